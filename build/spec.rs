@@ -1,0 +1,190 @@
+//! Reading and checking `modelDescription/*.toml`, and emitting the Rust variable table.
+use serde::Deserialize;
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    pub name: String,
+    pub description: String,
+    pub start_time: f64,
+    pub stop_time: f64,
+    pub step_size: f64,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Variable {
+    pub name: String,
+    pub vr: u32,
+    #[serde(rename = "type")]
+    pub var_type: String,
+    pub causality: String,
+    pub variability: String,
+    pub description: String,
+    pub unit: Option<String>,
+    #[serde(default)]
+    pub unit_by_scene: BTreeMap<String, String>,
+    pub start: Option<toml::Value>,
+    #[serde(default)]
+    pub start_by_scene: BTreeMap<String, toml::Value>,
+    pub min: Option<toml::Value>,
+    pub max: Option<toml::Value>,
+    #[serde(default)]
+    pub min_exclusive: bool,
+    #[serde(default)]
+    pub max_exclusive: bool,
+    pub scenes: Option<Vec<String>>,
+}
+
+#[derive(Deserialize)]
+struct ScenesFile {
+    scene: Vec<Scene>,
+}
+
+#[derive(Deserialize)]
+struct VariablesFile {
+    variable: Vec<Variable>,
+}
+
+pub struct Spec {
+    pub scenes: Vec<Scene>,
+    pub variables: Vec<Variable>,
+}
+
+fn number(v: &toml::Value, what: &str) -> Result<f64, String> {
+    match v {
+        toml::Value::Float(x) => Ok(*x),
+        toml::Value::Integer(i) => Ok(*i as f64),
+        other => Err(format!("{what}: expected a number, found {other}")),
+    }
+}
+
+impl Variable {
+    pub fn in_scene(&self, scene: &str) -> bool {
+        self.scenes.as_ref().is_none_or(|s| s.iter().any(|n| n == scene))
+    }
+    pub fn start_for(&self, scene: &str) -> Option<f64> {
+        let v = self.start_by_scene.get(scene).or(self.start.as_ref())?;
+        Some(number(v, &self.name).expect("checked on load"))
+    }
+    pub fn unit_for(&self, scene: &str) -> Option<&str> {
+        self.unit_by_scene.get(scene).or(self.unit.as_ref()).map(String::as_str)
+    }
+    pub fn min_value(&self) -> Option<f64> {
+        self.min.as_ref().map(|v| number(v, &self.name).expect("checked on load"))
+    }
+    pub fn max_value(&self) -> Option<f64> {
+        self.max.as_ref().map(|v| number(v, &self.name).expect("checked on load"))
+    }
+}
+
+impl Spec {
+    pub fn load(dir: &str) -> Result<Spec, String> {
+        let read = |f: &str| {
+            std::fs::read_to_string(format!("{dir}/{f}")).map_err(|e| format!("{dir}/{f}: {e}"))
+        };
+        let scenes: ScenesFile =
+            toml::from_str(&read("scenes.toml")?).map_err(|e| format!("scenes.toml: {e}"))?;
+        let vars: VariablesFile =
+            toml::from_str(&read("variables.toml")?).map_err(|e| format!("variables.toml: {e}"))?;
+        let spec = Spec { scenes: scenes.scene, variables: vars.variable };
+        spec.check()?;
+        Ok(spec)
+    }
+
+    fn check(&self) -> Result<(), String> {
+        let scene_names: BTreeSet<&str> = self.scenes.iter().map(|s| s.name.as_str()).collect();
+        let mut vrs = BTreeSet::new();
+        let mut names = BTreeSet::new();
+        for v in &self.variables {
+            let ctx = format!("variable `{}`", v.name);
+            if !vrs.insert(v.vr) {
+                return Err(format!("{ctx}: value reference {} used twice", v.vr));
+            }
+            if !names.insert(v.name.as_str()) {
+                return Err(format!("{ctx}: name used twice"));
+            }
+            if !["Real", "Integer"].contains(&v.var_type.as_str()) {
+                return Err(format!("{ctx}: type must be Real or Integer"));
+            }
+            let pairs = [
+                ("parameter", "fixed"),
+                ("parameter", "tunable"),
+                ("input", "continuous"),
+                ("output", "continuous"),
+                ("output", "discrete"),
+            ];
+            if !pairs.contains(&(v.causality.as_str(), v.variability.as_str())) {
+                return Err(format!("{ctx}: unsupported causality/variability"));
+            }
+            let needs_start = v.causality != "output";
+            if needs_start != v.start.is_some() {
+                return Err(format!("{ctx}: parameters and inputs need a start, outputs none"));
+            }
+            for (what, val) in [("start", &v.start), ("min", &v.min), ("max", &v.max)] {
+                if let Some(val) = val {
+                    number(val, &format!("{ctx} {what}"))?;
+                }
+            }
+            for (scene, val) in &v.start_by_scene {
+                number(val, &format!("{ctx} start_by_scene"))?;
+                if !scene_names.contains(scene.as_str()) {
+                    return Err(format!("{ctx}: unknown scene {scene}"));
+                }
+            }
+            for s in v.scenes.iter().flatten().chain(v.unit_by_scene.keys()) {
+                if !scene_names.contains(s.as_str()) {
+                    return Err(format!("{ctx}: unknown scene {s}"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Rust source of the variable table (types live in `src/variables.rs`).
+    pub fn rust_table(&self) -> String {
+        let mut s = String::from("// Generated by build.rs from modelDescription/. Do not edit.\n");
+        let opt = |x: Option<f64>| x.map_or("None".to_string(), |v| format!("Some({v:?})"));
+        let _ = writeln!(s, "pub const SCENE_NAMES: [&str; {}] = [", self.scenes.len());
+        for sc in &self.scenes {
+            let _ = writeln!(s, "    {:?},", sc.name);
+        }
+        s.push_str("];\n\npub static VARIABLES: &[Variable] = &[\n");
+        for v in &self.variables {
+            let cap = |x: &str| {
+                let mut c = x.chars();
+                c.next().map_or(String::new(), |f| f.to_uppercase().chain(c).collect())
+            };
+            let scenes: Vec<String> =
+                self.scenes.iter().map(|sc| v.in_scene(&sc.name).to_string()).collect();
+            let starts: Vec<String> =
+                self.scenes.iter().map(|sc| opt(v.start_for(&sc.name))).collect();
+            let _ = writeln!(
+                s,
+                "    Variable {{ name: {:?}, vr: {}, var_type: VarType::{}, causality: Causality::{}, \
+                 variability: Variability::{}, description: {:?}, min: {}, max: {}, \
+                 min_exclusive: {}, max_exclusive: {}, scenes: [{}], start: [{}] }},",
+                v.name,
+                v.vr,
+                v.var_type,
+                cap(&v.causality),
+                cap(&v.variability),
+                v.description,
+                opt(v.min_value()),
+                opt(v.max_value()),
+                v.min_exclusive,
+                v.max_exclusive,
+                scenes.join(", "),
+                starts.join(", "),
+            );
+        }
+        s.push_str("];\n\n/// Value references, named exactly like the variables (`vr::h` and `vr::H` differ).\n#[allow(non_upper_case_globals)]\npub mod vr {\n");
+        for v in &self.variables {
+            let _ = writeln!(s, "    pub const {}: u32 = {};", v.name, v.vr);
+        }
+        s.push_str("}\n");
+        s
+    }
+}

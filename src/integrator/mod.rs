@@ -1,0 +1,1 @@
+//! Static Newton and the implicit midpoint rule.

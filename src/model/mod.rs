@@ -1,0 +1,1 @@
+//! Reference geometry, the hybrid element, assembly, loads, mass and damping.
