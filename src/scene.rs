@@ -17,8 +17,11 @@ pub enum SceneKind {
 }
 
 impl SceneKind {
-    pub const ALL: [SceneKind; 3] =
-        [SceneKind::BuckledBeam, SceneKind::PinnedArch, SceneKind::ClampedArch];
+    pub const ALL: [SceneKind; 3] = [
+        SceneKind::BuckledBeam,
+        SceneKind::PinnedArch,
+        SceneKind::ClampedArch,
+    ];
 
     /// Position in [`variables::SCENE_NAMES`] and in `Variable::start` / `Variable::scenes`.
     pub fn index(self) -> usize {
@@ -56,7 +59,10 @@ impl fmt::Display for ParamError {
 impl std::error::Error for ParamError {}
 
 fn refuse(name: &str, message: impl Into<String>) -> ParamError {
-    ParamError { name: name.to_string(), message: message.into() }
+    ParamError {
+        name: name.to_string(),
+        message: message.into(),
+    }
 }
 
 /// Every parameter of a scene. Fields that a scene does not use keep their defaults and are
@@ -140,7 +146,10 @@ impl SceneParams {
             .filter(|v| v.causality == Causality::Parameter)
             .ok_or_else(|| refuse(name, "no such parameter"))?;
         if !v.scenes[self.kind.index()] {
-            return Err(refuse(name, format!("not a parameter of the {} scene", self.kind)));
+            return Err(refuse(
+                name,
+                format!("not a parameter of the {} scene", self.kind),
+            ));
         }
         Ok(v)
     }
@@ -204,7 +213,10 @@ impl SceneParams {
         match self.kind {
             SceneKind::BuckledBeam => {
                 if self.well == 0 {
-                    return Err(refuse("well", "must be +1 (midspan up) or -1 (down), not 0"));
+                    return Err(refuse(
+                        "well",
+                        "must be +1 (midspan up) or -1 (down), not 0",
+                    ));
                 }
                 if self.pre_shortening >= 0.5 * self.span {
                     return Err(refuse(
@@ -243,7 +255,10 @@ fn check_range(var: &Variable, value: f64) -> Result<(), ParamError> {
     }
     if !var.admits(value) {
         let range = var.range_text().unwrap_or_default();
-        return Err(refuse(var.name, format!("{value} is out of range: must be {range}")));
+        return Err(refuse(
+            var.name,
+            format!("{value} is out of range: must be {range}"),
+        ));
     }
     Ok(())
 }
@@ -260,7 +275,10 @@ struct SceneFile {
 impl<'de> Deserialize<'de> for SceneParams {
     fn deserialize<D: serde::Deserializer<'de>>(de: D) -> Result<Self, D::Error> {
         let file = SceneFile::deserialize(de)?;
-        SceneParams::with(file.scene, file.overrides.iter().map(|(k, v)| (k.as_str(), *v)))
-            .map_err(serde::de::Error::custom)
+        SceneParams::with(
+            file.scene,
+            file.overrides.iter().map(|(k, v)| (k.as_str(), *v)),
+        )
+        .map_err(serde::de::Error::custom)
     }
 }

@@ -1,8 +1,20 @@
 //! A scene brought to its initial static state and advanced in time by midpoint sub-steps:
 //! everything an FMU instance computes, without any FMI concern.
+use crate::integrator::{DynamicState, Midpoint, NewtonFailure, StaticSolver};
+use crate::model::rod::{ROTATION, U1, U2};
+use crate::model::{ExcitationKind, LoadCase, ReferenceCurve, Rod, Section};
 use crate::scene::{ParamError, SceneKind, SceneParams};
 use serde::{Deserialize, Serialize};
 use std::fmt;
+
+/// Version of [`Snapshot`]'s layout; bump it when the fields change.
+pub const SNAPSHOT_VERSION: u32 = 1;
+
+/// How often a failing sub-step is halved before a communication step is given up.
+pub const MAX_STEP_CUTS: u32 = 5;
+
+/// Load steps used to reach the initial static state.
+const RAMP_STEPS: usize = 20;
 
 /// Why a simulation could not be built or advanced.
 #[derive(Clone, Debug, PartialEq)]
@@ -25,7 +37,10 @@ impl fmt::Display for SimError {
             SimError::Param(e) => e.fmt(f),
             SimError::InitialState(why) => write!(f, "initial static state not found: {why}"),
             SimError::StepFailed { time, reason } => {
-                write!(f, "step from t = {time} failed: {reason}; state left unchanged")
+                write!(
+                    f,
+                    "step from t = {time} failed: {reason}; state left unchanged"
+                )
             }
             SimError::BadSnapshot(why) => write!(f, "state snapshot refused: {why}"),
             SimError::BadArgument(why) => f.write_str(why),
@@ -73,39 +88,314 @@ pub struct Snapshot {
     pub last_newton_iterations: u32,
 }
 
+/// The rod of a scene with its supports, and where its excitation acts.
+pub fn build_rod(p: &SceneParams) -> (Rod, ExcitationKind) {
+    let section = Section::rectangular(
+        p.youngs_modulus,
+        p.poisson_ratio,
+        p.density,
+        p.width,
+        p.height,
+    );
+    match p.kind {
+        SceneKind::BuckledBeam => {
+            let curve = ReferenceCurve::Straight { length: p.span };
+            let mut rod = Rod::new(curve, section, p.damping, p.elements);
+            let last = rod.last_node();
+            rod.fix(0, U1);
+            rod.fix(0, U2);
+            rod.fix(last, U1);
+            rod.fix(last, U2);
+            (rod, ExcitationKind::Distributed)
+        }
+        SceneKind::PinnedArch | SceneKind::ClampedArch => {
+            let curve = ReferenceCurve::arc(p.span, p.rise);
+            let mut rod = Rod::new(curve, section, p.damping, p.elements);
+            let clamped = p.kind == SceneKind::ClampedArch;
+            for node in [0, rod.last_node()] {
+                rod.fix(node, U1);
+                rod.fix(node, U2);
+                if clamped {
+                    rod.fix(node, ROTATION);
+                }
+            }
+            (rod, ExcitationKind::Crown)
+        }
+    }
+}
+
+/// The initial static state of model.md: the buckled beam in its well, or the arch under `P0`.
+pub fn initial_displacements(p: &SceneParams, rod: &Rod) -> Result<Vec<f64>, SimError> {
+    let mut solver = StaticSolver::new(rod);
+    let mut u = vec![0.0; rod.dofs()];
+    let fail = |what: &str, e: NewtonFailure| SimError::InitialState(format!("{what}: {e}"));
+    match p.kind {
+        SceneKind::BuckledBeam => {
+            if p.pre_shortening == 0.0 {
+                return Ok(u);
+            }
+            // Ramp the end shortening with a small transverse imperfection towards the chosen
+            // well (a uniform load giving a linear deflection of 1e-4 L), then remove it.
+            let span = p.span;
+            let q_imperfection = 1e-4 * span * 384.0 * rod.section.ei / (5.0 * span.powi(4));
+            let mut imperfection = vec![0.0; rod.dofs()];
+            rod.add_uniform_transverse_load(
+                &mut imperfection,
+                -(p.well.signum() as f64) * q_imperfection,
+            );
+            let last = rod.last_node();
+            for k in 1..=RAMP_STEPS {
+                let shortening = p.pre_shortening * k as f64 / RAMP_STEPS as f64;
+                // Predictor: spread the new shortening linearly along the span.
+                let previous = -u[3 * last + U1];
+                for i in 0..rod.nodes() {
+                    u[3 * i + U1] -= (shortening - previous) * rod.node_s[i] / rod.curve.length();
+                }
+                u[3 * last + U1] = -shortening;
+                solver
+                    .solve(rod, &mut u, &imperfection)
+                    .map_err(|e| fail("end-shortening ramp", e))?;
+            }
+            let zero = vec![0.0; rod.dofs()];
+            solver
+                .solve(rod, &mut u, &zero)
+                .map_err(|e| fail("imperfection removal", e))?;
+            let w_mid = rod.interpolate(&u, rod.midspan(), U2);
+            if w_mid * p.well as f64 <= 0.0 {
+                return Err(SimError::InitialState(format!(
+                    "the static state has w_mid = {w_mid:.4e}, not in the well {}",
+                    p.well
+                )));
+            }
+            Ok(u)
+        }
+        SceneKind::PinnedArch | SceneKind::ClampedArch => {
+            if p.preload == 0.0 {
+                return Ok(u);
+            }
+            let mut f_ext = vec![0.0; rod.dofs()];
+            for k in 1..=RAMP_STEPS {
+                f_ext.fill(0.0);
+                let load = p.preload * k as f64 / RAMP_STEPS as f64;
+                rod.add_point_transverse_load(&mut f_ext, rod.midspan(), load);
+                solver
+                    .solve(rod, &mut u, &f_ext)
+                    .map_err(|e| fail("preload ramp", e))?;
+            }
+            Ok(u)
+        }
+    }
+}
+
 pub struct Simulation {
-    _todo: (),
+    params: SceneParams,
+    rod: Rod,
+    loads: LoadCase,
+    integrator: Midpoint,
+    initial: DynamicState,
+    state: DynamicState,
+    /// Scratch state of a communication step in progress (the state is replaced only on success).
+    trial: DynamicState,
+    time: f64,
+    last_newton_iterations: u32,
+    /// `(F, Omega)` at construction, restored by [`Simulation::reset`].
+    initial_forcing: (f64, f64),
 }
 
 impl Simulation {
-    pub fn new(_params: SceneParams) -> Result<Simulation, SimError> {
-        todo!()
+    /// Validates the parameters, builds the rod and solves its initial static state.
+    pub fn new(params: SceneParams) -> Result<Simulation, SimError> {
+        params.validate()?;
+        let (rod, excitation) = build_rod(&params);
+        let mut loads = LoadCase::new(&rod, excitation);
+        loads.amplitude = params.forcing_amplitude;
+        loads.frequency = params.forcing_frequency;
+        let initial = DynamicState::at_rest(initial_displacements(&params, &rod)?);
+        Ok(Simulation {
+            integrator: Midpoint::new(&rod),
+            state: initial.clone(),
+            trial: initial.clone(),
+            initial,
+            loads,
+            rod,
+            time: 0.0,
+            last_newton_iterations: 0,
+            initial_forcing: (params.forcing_amplitude, params.forcing_frequency),
+            params,
+        })
     }
+
     pub fn params(&self) -> &SceneParams {
-        todo!()
+        &self.params
     }
+
+    pub fn rod(&self) -> &Rod {
+        &self.rod
+    }
+
+    pub fn state(&self) -> &DynamicState {
+        &self.state
+    }
+
+    /// Time since the start of the simulation.
     pub fn time(&self) -> f64 {
-        todo!()
+        self.time
     }
-    pub fn set_forcing(&mut self, _amplitude: f64, _frequency: f64) -> Result<(), ParamError> {
-        todo!()
+
+    /// Changes the tunable excitation `F cos(Omega t)`.
+    pub fn set_forcing(&mut self, amplitude: f64, frequency: f64) -> Result<(), ParamError> {
+        let mut p = self.params.clone();
+        p.set("F", amplitude)?;
+        p.set("Omega", frequency)?;
+        self.params = p;
+        self.loads.amplitude = amplitude;
+        self.loads.frequency = frequency;
+        Ok(())
     }
-    pub fn advance(&mut self, _h: f64, _f_ctrl: f64) -> Result<AdvanceReport, SimError> {
-        todo!()
+
+    /// The fewest equal sub-steps no longer than `dt_max` that make up `h`.
+    pub fn substeps_for(&self, h: f64) -> usize {
+        // The factor forgives round-off in h / dt_max (1e-4 / 1e-5 is 10.000000000000002).
+        ((h / self.params.dt_max) * (1.0 - 1e-12)).ceil().max(1.0) as usize
     }
+
+    /// One communication step of length `h` with the control force `f_ctrl` held: equal midpoint
+    /// sub-steps no longer than `dt_max`, the excitation taken at each sub-step's midpoint. A
+    /// failing sub-step makes the whole step restart with half the sub-step size (at most
+    /// [`MAX_STEP_CUTS`] times); if it still fails, the state is left exactly as it was.
+    pub fn advance(&mut self, h: f64, f_ctrl: f64) -> Result<AdvanceReport, SimError> {
+        if !(h.is_finite() && h > 0.0) {
+            return Err(SimError::BadArgument(format!(
+                "step size {h} must be finite and > 0"
+            )));
+        }
+        if !f_ctrl.is_finite() {
+            return Err(SimError::BadArgument(format!(
+                "f_ctrl = {f_ctrl} is not finite"
+            )));
+        }
+        let preload = match self.params.kind {
+            SceneKind::BuckledBeam => 0.0,
+            SceneKind::PinnedArch | SceneKind::ClampedArch => self.params.preload,
+        };
+        self.loads.point_force = preload + f_ctrl;
+        let t0 = self.time;
+        let mut substeps = self.substeps_for(h);
+        let mut last_failure = None;
+        for cuts in 0..=MAX_STEP_CUTS {
+            match self.try_substeps(t0, h, substeps) {
+                Ok(newton_iterations) => {
+                    std::mem::swap(&mut self.state, &mut self.trial);
+                    self.time = t0 + h;
+                    self.last_newton_iterations = newton_iterations;
+                    return Ok(AdvanceReport {
+                        substeps,
+                        newton_iterations,
+                        cuts,
+                    });
+                }
+                Err(e) => last_failure = Some(e),
+            }
+            substeps *= 2;
+        }
+        let reason = last_failure.map_or_else(String::new, |e| e.to_string());
+        Err(SimError::StepFailed {
+            time: t0,
+            reason: format!("{reason} (after {MAX_STEP_CUTS} halvings of the sub-step)"),
+        })
+    }
+
+    fn try_substeps(&mut self, t0: f64, h: f64, substeps: usize) -> Result<u32, NewtonFailure> {
+        self.trial.copy_from(&self.state);
+        let dt = h / substeps as f64;
+        let mut iterations = 0;
+        for k in 0..substeps {
+            let t_k = t0 + k as f64 * dt;
+            let stats = self
+                .integrator
+                .step(&self.rod, &self.loads, &mut self.trial, t_k, dt)?;
+            iterations += stats.iterations;
+        }
+        Ok(iterations)
+    }
+
     pub fn outputs(&self) -> Outputs {
-        todo!()
+        let mid = self.rod.midspan();
+        Outputs {
+            w_mid: self.rod.interpolate(&self.state.u, mid, U2),
+            v_mid: self.rod.interpolate(&self.state.v, mid, U2),
+            kinetic_energy: self.rod.kinetic_energy(&self.state.v),
+            strain_energy: self.rod.strain_energy(&self.state.u),
+        }
     }
+
+    /// Newton iterations summed over the sub-steps of the last communication step.
     pub fn last_newton_iterations(&self) -> u32 {
-        todo!()
+        self.last_newton_iterations
     }
+
     pub fn snapshot(&self) -> Snapshot {
-        todo!()
+        Snapshot {
+            version: SNAPSHOT_VERSION,
+            kind: self.params.kind,
+            elements: self.params.elements,
+            time: self.time,
+            displacements: self.state.u.clone(),
+            velocities: self.state.v.clone(),
+            forcing_amplitude: self.params.forcing_amplitude,
+            forcing_frequency: self.params.forcing_frequency,
+            last_newton_iterations: self.last_newton_iterations,
+        }
     }
-    pub fn restore(&mut self, _s: &Snapshot) -> Result<(), SimError> {
-        todo!()
+
+    /// Continues from a snapshot of a simulation of the same scene and mesh.
+    pub fn restore(&mut self, s: &Snapshot) -> Result<(), SimError> {
+        let bad = |why: String| Err(SimError::BadSnapshot(why));
+        if s.version != SNAPSHOT_VERSION {
+            return bad(format!(
+                "version {} (this build reads {SNAPSHOT_VERSION})",
+                s.version
+            ));
+        }
+        if s.kind != self.params.kind {
+            return bad(format!(
+                "taken from a {} (this is a {})",
+                s.kind, self.params.kind
+            ));
+        }
+        if s.elements != self.params.elements {
+            return bad(format!(
+                "{} elements (this rod has {})",
+                s.elements, self.params.elements
+            ));
+        }
+        let n = self.rod.dofs();
+        if s.displacements.len() != n || s.velocities.len() != n {
+            return bad(format!("vectors of the wrong length (expected {n})"));
+        }
+        if !(s.time.is_finite()
+            && s.displacements
+                .iter()
+                .chain(&s.velocities)
+                .all(|x| x.is_finite()))
+        {
+            return bad("non-finite values".to_string());
+        }
+        self.set_forcing(s.forcing_amplitude, s.forcing_frequency)?;
+        self.state.u.copy_from_slice(&s.displacements);
+        self.state.v.copy_from_slice(&s.velocities);
+        self.time = s.time;
+        self.last_newton_iterations = s.last_newton_iterations;
+        Ok(())
     }
+
+    /// Back to the initial static state at `t = 0`, with the excitation it was built with.
     pub fn reset(&mut self) {
-        todo!()
+        let (f, omega) = (self.initial_forcing.0, self.initial_forcing.1);
+        self.set_forcing(f, omega)
+            .expect("the initial forcing was valid");
+        self.state.copy_from(&self.initial);
+        self.time = 0.0;
+        self.last_newton_iterations = 0;
     }
 }

@@ -1,1 +1,8 @@
-//! Static Newton and the implicit midpoint rule.
+//! Solvers in time and for equilibrium: Newton settings, static Newton, the implicit midpoint rule.
+pub mod midpoint;
+pub mod newton;
+pub mod statics;
+
+pub use midpoint::{DynamicState, Midpoint};
+pub use newton::{NewtonFailure, NewtonSettings, NewtonStats};
+pub use statics::StaticSolver;

@@ -1,1 +1,13 @@
-//! Reference geometry, the hybrid element, assembly, loads, mass and damping.
+//! The rod model of `shared/spec/model.md`: reference geometry, section, the hybrid element and
+//! the assembled rod with its constraints, loads, mass and damping.
+pub mod element;
+pub mod geometry;
+pub mod loads;
+pub mod rod;
+pub mod section;
+
+pub use element::Element;
+pub use geometry::ReferenceCurve;
+pub use loads::{ExcitationKind, LoadCase};
+pub use rod::{PointOnRod, Rod};
+pub use section::Section;

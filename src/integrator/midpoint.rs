@@ -1,0 +1,121 @@
+//! The implicit midpoint rule (paper eqs. 38-43, model.md):
+//! `R(du) = M (2/dt^2 du - 2/dt v_n) + C du/dt + f_int(u_n + du/2) - f_ext(t_n + dt/2) = 0`,
+//! solved by Newton with the exact Jacobian `2/dt^2 M + C/dt + K_T(u_n + du/2)/2`; then
+//! `u_(n+1) = u_n + du`, `v_(n+1) = 2 du/dt - v_n`. Constrained dofs keep their values.
+//! All buffers live in [`Midpoint`]: a step allocates nothing.
+use super::newton::{inf_norm, inf_norm_free, NewtonFailure, NewtonSettings, NewtonStats};
+use crate::model::{LoadCase, Rod};
+use crate::solver::BlockTridiagonal;
+use serde::{Deserialize, Serialize};
+
+/// Displacements and velocities of every dof (constrained ones included).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DynamicState {
+    pub u: Vec<f64>,
+    pub v: Vec<f64>,
+}
+
+impl DynamicState {
+    pub fn at_rest(u: Vec<f64>) -> DynamicState {
+        let v = vec![0.0; u.len()];
+        DynamicState { u, v }
+    }
+
+    pub fn copy_from(&mut self, other: &DynamicState) {
+        self.u.copy_from_slice(&other.u);
+        self.v.copy_from_slice(&other.v);
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Midpoint {
+    pub settings: NewtonSettings,
+    jac: BlockTridiagonal,
+    du: Vec<f64>,
+    u_mid: Vec<f64>,
+    residual: Vec<f64>,
+    inertia: Vec<f64>,
+}
+
+impl Midpoint {
+    pub fn new(rod: &Rod) -> Midpoint {
+        let n = rod.dofs();
+        Midpoint {
+            settings: NewtonSettings::tight(rod.curve.length()),
+            jac: BlockTridiagonal::new(rod.nodes()),
+            du: vec![0.0; n],
+            u_mid: vec![0.0; n],
+            residual: vec![0.0; n],
+            inertia: vec![0.0; n],
+        }
+    }
+
+    /// One step of size `dt` from `t_n`. On failure `state` is untouched.
+    pub fn step(
+        &mut self,
+        rod: &Rod,
+        loads: &LoadCase,
+        state: &mut DynamicState,
+        t_n: f64,
+        dt: f64,
+    ) -> Result<NewtonStats, NewtonFailure> {
+        let t_mid = t_n + 0.5 * dt;
+        let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
+        // Predictor: constant velocity.
+        for (d, v) in self.du.iter_mut().zip(&state.v) {
+            *d = dt * v;
+        }
+        rod.zero_constrained(&mut self.du);
+        // The inertia term's known part, -2/dt v_n.
+        for (m, v) in self.inertia.iter_mut().zip(&state.v) {
+            *m = -2.0 / dt * v;
+        }
+        let mut stats = NewtonStats::default();
+        loop {
+            for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
+                *um = u + 0.5 * d;
+            }
+            self.jac.set_zero();
+            rod.internal_force_and_tangent(&self.u_mid, &mut self.residual, &mut self.jac, 0.5);
+            rod.add_mass(&mut self.jac, a);
+            rod.add_damping(&mut self.jac, c);
+            // M (a du - 2/dt v_n): reuse `u_mid` as scratch for the bracket.
+            for ((s, d), m) in self.u_mid.iter_mut().zip(&self.du).zip(&self.inertia) {
+                *s = a * d + m;
+            }
+            rod.add_mass_times(&self.u_mid, &mut self.residual, 1.0);
+            rod.add_damping_times(&self.du, &mut self.residual, c);
+            loads.add_to(t_mid, &mut self.residual, -1.0);
+            rod.zero_constrained(&mut self.residual);
+            let residual_norm = inf_norm_free(&self.residual, &rod.fixed);
+            if !residual_norm.is_finite() {
+                return Err(NewtonFailure::NonFinite {
+                    iteration: stats.iterations,
+                });
+            }
+            self.jac.constrain(&rod.fixed);
+            self.jac.factor()?;
+            self.residual.iter_mut().for_each(|r| *r = -*r);
+            self.jac.solve_in_place(&mut self.residual);
+            let correction = inf_norm(&self.residual);
+            for (d, r) in self.du.iter_mut().zip(&self.residual) {
+                *d += r;
+            }
+            stats.record(residual_norm, correction);
+            if self.settings.converged(correction, inf_norm(&self.du)) {
+                break;
+            }
+            if stats.iterations >= self.settings.max_iterations || !correction.is_finite() {
+                return Err(NewtonFailure::NotConverged {
+                    iterations: stats.iterations,
+                    correction,
+                });
+            }
+        }
+        for ((u, v), d) in state.u.iter_mut().zip(state.v.iter_mut()).zip(&self.du) {
+            *u += d;
+            *v = 2.0 * d / dt - *v;
+        }
+        Ok(stats)
+    }
+}

@@ -1,0 +1,122 @@
+//! Newton iteration settings, statistics and failures shared by the static and dynamic solvers.
+use crate::solver::SingularMatrix;
+use std::fmt;
+
+/// When Newton stops. Convergence: `|delta|_inf <= relative * |increment|_inf + absolute`, where
+/// `increment` is the step's total change so far; `absolute` is a length (about round-off of the
+/// positions of a rod of this size) so that a step that barely moves still converges.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonSettings {
+    pub max_iterations: u32,
+    pub relative: f64,
+    pub absolute: f64,
+}
+
+impl NewtonSettings {
+    /// The tight tolerances of model.md, for a rod of characteristic length `length`.
+    pub fn tight(length: f64) -> NewtonSettings {
+        NewtonSettings {
+            max_iterations: 25,
+            relative: 1e-10,
+            absolute: 1e-13 * length.max(1e-3),
+        }
+    }
+
+    pub fn converged(&self, correction: f64, increment: f64) -> bool {
+        correction <= self.relative * increment + self.absolute
+    }
+}
+
+/// Capacity of the per-iteration history kept without allocation.
+pub const HISTORY: usize = 32;
+
+/// What a converged Newton solve did; `residuals[..iterations]` are the residual norms (inf norm,
+/// constrained dofs excluded) at the start of each iteration, `corrections` the Newton updates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NewtonStats {
+    pub iterations: u32,
+    pub residuals: [f64; HISTORY],
+    pub corrections: [f64; HISTORY],
+}
+
+impl Default for NewtonStats {
+    fn default() -> Self {
+        NewtonStats {
+            iterations: 0,
+            residuals: [0.0; HISTORY],
+            corrections: [0.0; HISTORY],
+        }
+    }
+}
+
+impl NewtonStats {
+    pub fn record(&mut self, residual: f64, correction: f64) {
+        let i = self.iterations as usize;
+        if i < HISTORY {
+            self.residuals[i] = residual;
+            self.corrections[i] = correction;
+        }
+        self.iterations += 1;
+    }
+
+    pub fn residual_history(&self) -> &[f64] {
+        &self.residuals[..(self.iterations as usize).min(HISTORY)]
+    }
+
+    pub fn correction_history(&self) -> &[f64] {
+        &self.corrections[..(self.iterations as usize).min(HISTORY)]
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum NewtonFailure {
+    NotConverged { iterations: u32, correction: f64 },
+    Singular(SingularMatrix),
+    NonFinite { iteration: u32 },
+}
+
+impl fmt::Display for NewtonFailure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            NewtonFailure::NotConverged { iterations, correction } => write!(
+                f,
+                "Newton did not converge in {iterations} iterations (last correction {correction:.3e})"
+            ),
+            NewtonFailure::Singular(s) => write!(f, "Newton: tangent matrix has a {s}"),
+            NewtonFailure::NonFinite { iteration } => {
+                write!(f, "Newton: non-finite residual at iteration {iteration}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for NewtonFailure {}
+
+impl From<SingularMatrix> for NewtonFailure {
+    fn from(s: SingularMatrix) -> Self {
+        NewtonFailure::Singular(s)
+    }
+}
+
+pub(crate) fn inf_norm(x: &[f64]) -> f64 {
+    x.iter().fold(0.0, |m, v| {
+        if v.abs() > m || v.is_nan() {
+            v.abs()
+        } else {
+            m
+        }
+    })
+}
+
+pub(crate) fn inf_norm_free(x: &[f64], fixed: &[bool]) -> f64 {
+    x.iter()
+        .zip(fixed)
+        .filter(|(_, &f)| !f)
+        .fold(0.0, |m, (v, _)| {
+            if v.abs() > m || v.is_nan() {
+                v.abs()
+            } else {
+                m
+            }
+        })
+}

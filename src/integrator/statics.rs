@@ -1,0 +1,90 @@
+//! Static equilibrium `f_int(u) = f_ext` by Newton with the consistent tangent. Constrained dofs
+//! keep the values they have in `u` (prescribed displacements are set by the caller).
+use super::newton::{inf_norm, inf_norm_free, NewtonFailure, NewtonSettings, NewtonStats};
+use crate::model::Rod;
+use crate::solver::BlockTridiagonal;
+
+/// Buffers of a static solve, reused between solves.
+#[derive(Clone, Debug)]
+pub struct StaticSolver {
+    pub settings: NewtonSettings,
+    jac: BlockTridiagonal,
+    residual: Vec<f64>,
+    start: Vec<f64>,
+}
+
+impl StaticSolver {
+    pub fn new(rod: &Rod) -> StaticSolver {
+        StaticSolver {
+            settings: NewtonSettings::tight(rod.curve.length()),
+            jac: BlockTridiagonal::new(rod.nodes()),
+            residual: vec![0.0; rod.dofs()],
+            start: vec![0.0; rod.dofs()],
+        }
+    }
+
+    /// Solves `f_int(u) = f_ext` starting from `u`; on failure `u` is restored.
+    pub fn solve(
+        &mut self,
+        rod: &Rod,
+        u: &mut [f64],
+        f_ext: &[f64],
+    ) -> Result<NewtonStats, NewtonFailure> {
+        self.start.copy_from_slice(u);
+        let result = self.iterate(rod, u, f_ext);
+        if result.is_err() {
+            u.copy_from_slice(&self.start);
+        }
+        result
+    }
+
+    fn iterate(
+        &mut self,
+        rod: &Rod,
+        u: &mut [f64],
+        f_ext: &[f64],
+    ) -> Result<NewtonStats, NewtonFailure> {
+        let mut stats = NewtonStats::default();
+        loop {
+            self.jac.set_zero();
+            rod.internal_force_and_tangent(u, &mut self.residual, &mut self.jac, 1.0);
+            for (r, f) in self.residual.iter_mut().zip(f_ext) {
+                *r -= f;
+            }
+            rod.zero_constrained(&mut self.residual);
+            let residual_norm = inf_norm_free(&self.residual, &rod.fixed);
+            if !residual_norm.is_finite() {
+                return Err(NewtonFailure::NonFinite {
+                    iteration: stats.iterations,
+                });
+            }
+            self.jac.constrain(&rod.fixed);
+            self.jac.factor()?;
+            self.residual.iter_mut().for_each(|r| *r = -*r);
+            self.jac.solve_in_place(&mut self.residual);
+            let correction = inf_norm(&self.residual);
+            for (x, d) in u.iter_mut().zip(&self.residual) {
+                *x += d;
+            }
+            stats.record(residual_norm, correction);
+            let moved = u
+                .iter()
+                .zip(&self.start)
+                .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            if self.settings.converged(correction, moved) {
+                return Ok(stats);
+            }
+            if stats.iterations >= self.settings.max_iterations || !correction.is_finite() {
+                return Err(NewtonFailure::NotConverged {
+                    iterations: stats.iterations,
+                    correction,
+                });
+            }
+        }
+    }
+
+    /// The tangent at the last solution, factored: its negative pivot count tells stability.
+    pub fn factored_tangent(&self) -> &BlockTridiagonal {
+        &self.jac
+    }
+}

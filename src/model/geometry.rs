@@ -1,0 +1,70 @@
+//! Reference curves `X(s)` parametrized by arc length, with the tangent angle `alpha(s)` measured
+//! from `e1` (model.md: `G = cos(alpha) e1 + sin(alpha) e2`).
+use nalgebra::Vector2;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ReferenceCurve {
+    /// Straight rod from the origin along `e1`.
+    Straight { length: f64 },
+    /// Circular arc from `(0, 0)` to `(span, 0)` through the crown `(span/2, rise)`.
+    CircularArc {
+        radius: f64,
+        half_angle: f64,
+        span: f64,
+        rise: f64,
+    },
+}
+
+impl ReferenceCurve {
+    /// The circular arc of span `L` and rise `H`: `R = (L^2/4 + H^2) / (2H)`,
+    /// `t0 = asin(L / (2R))`, `alpha(s) = t0 - s/R`.
+    pub fn arc(span: f64, rise: f64) -> ReferenceCurve {
+        let radius = (0.25 * span * span + rise * rise) / (2.0 * rise);
+        let half_angle = (0.5 * span / radius).clamp(-1.0, 1.0).asin();
+        ReferenceCurve::CircularArc {
+            radius,
+            half_angle,
+            span,
+            rise,
+        }
+    }
+
+    /// Arc length `S`.
+    pub fn length(&self) -> f64 {
+        match *self {
+            ReferenceCurve::Straight { length } => length,
+            ReferenceCurve::CircularArc {
+                radius, half_angle, ..
+            } => 2.0 * radius * half_angle,
+        }
+    }
+
+    /// Tangent angle `alpha(s)` from `e1`.
+    pub fn tangent_angle(&self, s: f64) -> f64 {
+        match *self {
+            ReferenceCurve::Straight { .. } => 0.0,
+            ReferenceCurve::CircularArc {
+                radius, half_angle, ..
+            } => half_angle - s / radius,
+        }
+    }
+
+    /// Position `X(s)`.
+    pub fn position(&self, s: f64) -> Vector2<f64> {
+        match *self {
+            ReferenceCurve::Straight { .. } => Vector2::new(s, 0.0),
+            ReferenceCurve::CircularArc {
+                radius,
+                half_angle,
+                span,
+                rise,
+            } => {
+                let a = half_angle - s / radius;
+                Vector2::new(
+                    0.5 * span - radius * a.sin(),
+                    rise - radius + radius * a.cos(),
+                )
+            }
+        }
+    }
+}

@@ -1,0 +1,259 @@
+//! A meshed rod: elements along the reference curve, constrained dofs, and the global vectors and
+//! matrices (internal force, tangent, mass, damping, loads). Global dof `3 i + k` is `u1`, `u2`,
+//! `w` (k = 0, 1, 2) of node `i`; element `e` joins nodes `e` and `e + 1`, so its six dofs are
+//! contiguous and the matrices are block tridiagonal.
+use super::element::{shape_functions, Element, ElementInertia, Vector6, GAUSS_POINTS};
+use super::geometry::ReferenceCurve;
+use super::section::Section;
+use crate::solver::BlockTridiagonal;
+use nalgebra::Vector2;
+
+/// Dof index within a node.
+pub const U1: usize = 0;
+pub const U2: usize = 1;
+pub const ROTATION: usize = 2;
+
+/// A point of the rod given by the element that holds it and the shape-function weights there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointOnRod {
+    pub element: usize,
+    pub weights: (f64, f64),
+}
+
+#[derive(Clone, Debug)]
+pub struct Rod {
+    pub curve: ReferenceCurve,
+    pub section: Section,
+    /// Viscous damping per unit length on the translations.
+    pub damping: f64,
+    pub elements: Vec<Element>,
+    inertia: Vec<ElementInertia>,
+    /// Arc length of each node.
+    pub node_s: Vec<f64>,
+    /// Constrained (fixed or prescribed) dofs, per global dof.
+    pub fixed: Vec<bool>,
+}
+
+impl Rod {
+    /// `n` equal elements along `curve`; no dof constrained.
+    pub fn new(curve: ReferenceCurve, section: Section, damping: f64, n: usize) -> Rod {
+        assert!(n >= 1, "a rod needs at least one element");
+        let length = curve.length() / n as f64;
+        let node_s: Vec<f64> = (0..=n)
+            .map(|i| curve.length() * i as f64 / n as f64)
+            .collect();
+        let elements = (0..n)
+            .map(|e| {
+                let alpha = GAUSS_POINTS.map(|xi| {
+                    let (_, nb) = shape_functions(xi);
+                    curve.tangent_angle(node_s[e] + nb * length)
+                });
+                Element { length, alpha }
+            })
+            .collect();
+        Rod {
+            curve,
+            section,
+            damping,
+            elements,
+            inertia: vec![ElementInertia::new(&section, damping, length); n],
+            node_s,
+            fixed: vec![false; 3 * (n + 1)],
+        }
+    }
+
+    pub fn nodes(&self) -> usize {
+        self.node_s.len()
+    }
+
+    pub fn dofs(&self) -> usize {
+        3 * self.nodes()
+    }
+
+    pub fn last_node(&self) -> usize {
+        self.nodes() - 1
+    }
+
+    /// Constrains dof `k` (`U1`, `U2`, `ROTATION`) of `node`.
+    pub fn fix(&mut self, node: usize, k: usize) {
+        self.fixed[3 * node + k] = true;
+    }
+
+    fn element_dofs(x: &[f64], e: usize) -> Vector6 {
+        Vector6::from_column_slice(&x[3 * e..3 * e + 6])
+    }
+
+    /// `f = f_int(u)` (overwrites `f`).
+    pub fn internal_force(&self, u: &[f64], f: &mut [f64]) {
+        f.fill(0.0);
+        for (e, el) in self.elements.iter().enumerate() {
+            let fe = el.internal_force(&self.section, &Self::element_dofs(u, e));
+            add_element_vector(f, e, &fe);
+        }
+    }
+
+    /// `f = f_int(u)` (overwrites) and `jac += scale * K_T(u)`.
+    pub fn internal_force_and_tangent(
+        &self,
+        u: &[f64],
+        f: &mut [f64],
+        jac: &mut BlockTridiagonal,
+        scale: f64,
+    ) {
+        f.fill(0.0);
+        for (e, el) in self.elements.iter().enumerate() {
+            let (fe, ke) = el.force_and_tangent(&self.section, &Self::element_dofs(u, e));
+            add_element_vector(f, e, &fe);
+            jac.add_element(e, &ke, scale);
+        }
+    }
+
+    /// `jac += scale * M`.
+    pub fn add_mass(&self, jac: &mut BlockTridiagonal, scale: f64) {
+        for (e, m) in self.inertia.iter().enumerate() {
+            jac.add_element_pattern(e, &m.coefficients(false), scale);
+        }
+    }
+
+    /// `jac += scale * C` (damping).
+    pub fn add_damping(&self, jac: &mut BlockTridiagonal, scale: f64) {
+        for (e, m) in self.inertia.iter().enumerate() {
+            jac.add_element_pattern(e, &m.coefficients(true), scale);
+        }
+    }
+
+    fn add_pattern_times(&self, x: &[f64], out: &mut [f64], scale: f64, damping: bool) {
+        for (e, m) in self.inertia.iter().enumerate() {
+            let c = m.coefficients(damping) * scale;
+            for k in 0..3 {
+                let (a, b) = (x[3 * e + k], x[3 * e + 3 + k]);
+                out[3 * e + k] += c[k] * (2.0 * a + b);
+                out[3 * e + 3 + k] += c[k] * (a + 2.0 * b);
+            }
+        }
+    }
+
+    /// `out += scale * M x`.
+    pub fn add_mass_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
+        self.add_pattern_times(x, out, scale, false);
+    }
+
+    /// `out += scale * C x`.
+    pub fn add_damping_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
+        self.add_pattern_times(x, out, scale, true);
+    }
+
+    pub fn strain_energy(&self, u: &[f64]) -> f64 {
+        (self.elements.iter().enumerate())
+            .map(|(e, el)| el.strain_energy(&self.section, &Self::element_dofs(u, e)))
+            .sum()
+    }
+
+    /// `v^T M v / 2`.
+    pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
+        let mut e = 0.0;
+        for (el, m) in self.inertia.iter().enumerate() {
+            let c = m.coefficients(false);
+            for k in 0..3 {
+                let (a, b) = (v[3 * el + k], v[3 * el + 3 + k]);
+                e += c[k] * (a * a + a * b + b * b);
+            }
+        }
+        e
+    }
+
+    /// `v^T C v` (power dissipated by the damping).
+    pub fn dissipation_rate(&self, v: &[f64]) -> f64 {
+        let mut p = 0.0;
+        for (el, m) in self.inertia.iter().enumerate() {
+            let c = m.coefficients(true);
+            for k in 0..2 {
+                let (a, b) = (v[3 * el + k], v[3 * el + 3 + k]);
+                p += 2.0 * c[k] * (a * a + a * b + b * b);
+            }
+        }
+        p
+    }
+
+    /// The point at arc length `s` (clamped to the rod).
+    pub fn point_at(&self, s: f64) -> PointOnRod {
+        let n = self.elements.len();
+        let total = self.curve.length();
+        let x = (s / total * n as f64).clamp(0.0, n as f64);
+        let element = (x.floor() as usize).min(n - 1);
+        let local = x - element as f64;
+        PointOnRod {
+            element,
+            weights: (1.0 - local, local),
+        }
+    }
+
+    /// The point `s = S/2`, where the crown load acts and the outputs are taken.
+    pub fn midspan(&self) -> PointOnRod {
+        self.point_at(0.5 * self.curve.length())
+    }
+
+    /// Dof `k` of a nodal vector interpolated at `p`.
+    pub fn interpolate(&self, x: &[f64], p: PointOnRod, k: usize) -> f64 {
+        let (na, nb) = p.weights;
+        na * x[3 * p.element + k] + nb * x[3 * p.element + 3 + k]
+    }
+
+    /// Nodal forces of a unit uniform load per unit length along `-e2` (fixed direction).
+    pub fn add_uniform_transverse_load(&self, out: &mut [f64], magnitude: f64) {
+        for (e, el) in self.elements.iter().enumerate() {
+            let half = 0.5 * magnitude * el.length;
+            out[3 * e + U2] -= half;
+            out[3 * (e + 1) + U2] -= half;
+        }
+    }
+
+    /// Nodal forces of a point force of `magnitude` along `-e2` at `p`.
+    pub fn add_point_transverse_load(&self, out: &mut [f64], p: PointOnRod, magnitude: f64) {
+        let (na, nb) = p.weights;
+        out[3 * p.element + U2] -= na * magnitude;
+        out[3 * (p.element + 1) + U2] -= nb * magnitude;
+    }
+
+    /// Current position of node `i`.
+    pub fn node_position(&self, u: &[f64], i: usize) -> Vector2<f64> {
+        self.curve.position(self.node_s[i]) + Vector2::new(u[3 * i + U1], u[3 * i + U2])
+    }
+
+    /// Linear momentum `sum M v` over the translations.
+    pub fn linear_momentum(&self, v: &[f64]) -> Vector2<f64> {
+        let mut p = vec![0.0; v.len()];
+        self.add_mass_times(v, &mut p, 1.0);
+        let mut total = Vector2::zeros();
+        for i in 0..self.nodes() {
+            total += Vector2::new(p[3 * i + U1], p[3 * i + U2]);
+        }
+        total
+    }
+
+    /// Angular momentum about the origin, `integral (x × rho A du/dt + rho I dw/dt) ds`, with the
+    /// consistent (exactly integrated) mass: `sum_i x_i × (M v)_i + (M v)_w`.
+    pub fn angular_momentum(&self, u: &[f64], v: &[f64]) -> f64 {
+        let mut p = vec![0.0; v.len()];
+        self.add_mass_times(v, &mut p, 1.0);
+        let mut total = 0.0;
+        for i in 0..self.nodes() {
+            let x = self.node_position(u, i);
+            total += x[0] * p[3 * i + U2] - x[1] * p[3 * i + U1] + p[3 * i + ROTATION];
+        }
+        total
+    }
+
+    /// Sets constrained entries of `x` to zero.
+    pub fn zero_constrained(&self, x: &mut [f64]) {
+        for (xi, _) in x.iter_mut().zip(&self.fixed).filter(|(_, &f)| f) {
+            *xi = 0.0;
+        }
+    }
+}
+
+fn add_element_vector(out: &mut [f64], e: usize, fe: &Vector6) {
+    for (o, f) in out[3 * e..3 * e + 6].iter_mut().zip(fe.iter()) {
+        *o += f;
+    }
+}

@@ -1,0 +1,176 @@
+//! Block-tridiagonal matrices with 3x3 blocks (one block row per node) and their block LU
+//! factorization: O(nodes) work and no allocation after construction.
+//!
+//! Storage: `diag[i]` is block `(i, i)`, `upper[i]` block `(i, i+1)`, `lower[i]` block `(i+1, i)`.
+//! `factor` overwrites `diag` with the inverses of the Schur complements `D'_i` and `lower` with
+//! the multipliers `L_i = A_(i+1,i) D'_i^-1`; `upper` is kept.
+use crate::model::element::Matrix6;
+use nalgebra::{Matrix3, Vector3};
+use std::fmt;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct SingularMatrix {
+    /// Block row where a pivot block could not be inverted.
+    pub block: usize,
+}
+
+impl fmt::Display for SingularMatrix {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "singular pivot block at node {}", self.block)
+    }
+}
+
+impl std::error::Error for SingularMatrix {}
+
+#[derive(Clone, Debug)]
+pub struct BlockTridiagonal {
+    diag: Vec<Matrix3<f64>>,
+    upper: Vec<Matrix3<f64>>,
+    lower: Vec<Matrix3<f64>>,
+    factored: bool,
+    /// Number of pivot blocks with negative determinant (after `factor`).
+    negative_pivots: usize,
+    log_abs_det: f64,
+}
+
+impl BlockTridiagonal {
+    pub fn new(blocks: usize) -> BlockTridiagonal {
+        assert!(blocks >= 1);
+        BlockTridiagonal {
+            diag: vec![Matrix3::zeros(); blocks],
+            upper: vec![Matrix3::zeros(); blocks - 1],
+            lower: vec![Matrix3::zeros(); blocks - 1],
+            factored: false,
+            negative_pivots: 0,
+            log_abs_det: 0.0,
+        }
+    }
+
+    pub fn blocks(&self) -> usize {
+        self.diag.len()
+    }
+
+    pub fn set_zero(&mut self) {
+        self.diag.iter_mut().for_each(|m| m.fill(0.0));
+        self.upper.iter_mut().for_each(|m| m.fill(0.0));
+        self.lower.iter_mut().for_each(|m| m.fill(0.0));
+        self.factored = false;
+    }
+
+    /// Adds `scale * k` for the element between nodes `e` and `e + 1`.
+    pub fn add_element(&mut self, e: usize, k: &Matrix6, scale: f64) {
+        debug_assert!(!self.factored);
+        self.diag[e] += scale * k.fixed_view::<3, 3>(0, 0);
+        self.upper[e] += scale * k.fixed_view::<3, 3>(0, 3);
+        self.lower[e] += scale * k.fixed_view::<3, 3>(3, 0);
+        self.diag[e + 1] += scale * k.fixed_view::<3, 3>(3, 3);
+    }
+
+    /// Adds `scale * [[2 c, c], [c, 2 c]]` per dof kind (`coeffs = (c_u1, c_u2, c_w)`), the
+    /// pattern of the consistent mass and damping matrices of element `e`.
+    pub fn add_element_pattern(&mut self, e: usize, coeffs: &Vector3<f64>, scale: f64) {
+        debug_assert!(!self.factored);
+        let d = Matrix3::from_diagonal(&(coeffs * scale));
+        self.diag[e] += 2.0 * d;
+        self.diag[e + 1] += 2.0 * d;
+        self.upper[e] += d;
+        self.lower[e] += d;
+    }
+
+    /// Replaces the rows and columns of the constrained dofs by those of the identity, which is
+    /// the same as removing them from the system (their right-hand side must be zero).
+    pub fn constrain(&mut self, fixed: &[bool]) {
+        debug_assert_eq!(fixed.len(), 3 * self.blocks());
+        for (dof, _) in fixed.iter().enumerate().filter(|(_, &f)| f) {
+            let (i, k) = (dof / 3, dof % 3);
+            self.diag[i].row_mut(k).fill(0.0);
+            self.diag[i].column_mut(k).fill(0.0);
+            self.diag[i][(k, k)] = 1.0;
+            if i > 0 {
+                self.upper[i - 1].column_mut(k).fill(0.0);
+                self.lower[i - 1].row_mut(k).fill(0.0);
+            }
+            if i + 1 < self.blocks() {
+                self.upper[i].row_mut(k).fill(0.0);
+                self.lower[i].column_mut(k).fill(0.0);
+            }
+        }
+    }
+
+    /// `out = A x` (before factorization).
+    pub fn mul(&self, x: &[f64], out: &mut [f64]) {
+        debug_assert!(!self.factored);
+        let n = self.blocks();
+        for i in 0..n {
+            let mut y = self.diag[i] * block(x, i);
+            if i + 1 < n {
+                y += self.upper[i] * block(x, i + 1);
+            }
+            if i > 0 {
+                y += self.lower[i - 1] * block(x, i - 1);
+            }
+            out[3 * i..3 * i + 3].copy_from_slice(y.as_slice());
+        }
+    }
+
+    /// Block LU factorization in place, without pivoting between blocks (the Jacobians here are
+    /// symmetric and, in dynamics, mass-dominated). Fails on a pivot block that is singular to
+    /// working precision.
+    pub fn factor(&mut self) -> Result<(), SingularMatrix> {
+        debug_assert!(!self.factored);
+        self.negative_pivots = 0;
+        self.log_abs_det = 0.0;
+        for i in 0..self.blocks() {
+            if i > 0 {
+                // D'_i = D_i - L_(i-1) U_(i-1), with L_(i-1) = A_(i,i-1) D'_(i-1)^-1.
+                let l = self.lower[i - 1] * self.diag[i - 1];
+                self.diag[i] -= l * self.upper[i - 1];
+                self.lower[i - 1] = l;
+            }
+            let pivot = self.diag[i];
+            let det = pivot.determinant();
+            let scale = pivot.abs().max();
+            if !det.is_finite() || det.abs() <= 1e-14 * scale * scale * scale {
+                return Err(SingularMatrix { block: i });
+            }
+            if det < 0.0 {
+                self.negative_pivots += 1;
+            }
+            self.log_abs_det += det.abs().ln();
+            self.diag[i] = pivot.try_inverse().ok_or(SingularMatrix { block: i })?;
+        }
+        self.factored = true;
+        Ok(())
+    }
+
+    /// Solves `A x = rhs` in place (after [`factor`](Self::factor)).
+    pub fn solve_in_place(&self, rhs: &mut [f64]) {
+        assert!(self.factored, "solve before factor");
+        let n = self.blocks();
+        for i in 1..n {
+            let y = block(rhs, i) - self.lower[i - 1] * block(rhs, i - 1);
+            rhs[3 * i..3 * i + 3].copy_from_slice(y.as_slice());
+        }
+        let last = self.diag[n - 1] * block(rhs, n - 1);
+        rhs[3 * (n - 1)..3 * n].copy_from_slice(last.as_slice());
+        for i in (0..n - 1).rev() {
+            let x = self.diag[i] * (block(rhs, i) - self.upper[i] * block(rhs, i + 1));
+            rhs[3 * i..3 * i + 3].copy_from_slice(x.as_slice());
+        }
+    }
+
+    /// Parity information for stability checks: the number of pivot blocks with a negative
+    /// determinant; the sign of `det A` is `(-1)^negative_pivots`.
+    pub fn negative_pivots(&self) -> usize {
+        self.negative_pivots
+    }
+
+    /// `ln |det A|` (after factorization).
+    pub fn log_abs_determinant(&self) -> f64 {
+        self.log_abs_det
+    }
+}
+
+fn block(x: &[f64], i: usize) -> Vector3<f64> {
+    Vector3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2])
+}
