@@ -1,1 +1,53 @@
-fn main() {}
+//! Cost of the midpoint rule against the number of elements: prints microseconds per Newton
+//! iteration and per time step for 10 to 10,000 elements, and the ratio between consecutive sizes
+//! (10x more elements should cost about 10x: linear, block-tridiagonal work).
+//!
+//! Run: `cargo bench --bench scaling` (release profile). Each size runs the BuckledBeam with the
+//! default excitation from its static buckled state, with steps of 1e-6 s, for about one second.
+use georod::scene::{SceneKind, SceneParams};
+use georod::simulation::Simulation;
+use std::time::Instant;
+
+fn measure(elements: usize) -> (f64, f64, f64) {
+    let params = SceneParams::with(
+        SceneKind::BuckledBeam,
+        [("elements", elements as f64), ("dt_max", 1e-6)],
+    )
+    .expect("valid parameters");
+    let mut sim = Simulation::new(params).expect("initial state");
+    // Warm up, then time enough steps for about a second.
+    sim.advance(1e-6, 0.0).expect("step");
+    let mut steps = 1usize;
+    loop {
+        let start = Instant::now();
+        let mut iterations = 0u64;
+        for _ in 0..steps {
+            iterations += sim.advance(1e-6, 0.0).expect("step").newton_iterations as u64;
+        }
+        let seconds = start.elapsed().as_secs_f64();
+        if seconds > 1.0 || steps >= 1 << 22 {
+            let per_step = 1e6 * seconds / steps as f64;
+            let per_iteration = 1e6 * seconds / iterations as f64;
+            return (per_iteration, per_step, iterations as f64 / steps as f64);
+        }
+        steps *= if seconds < 0.05 { 10 } else { 2 };
+    }
+}
+
+fn main() {
+    println!("| elements | us / Newton iteration | us / time step | iterations / step | ratio (iteration) | ratio (step) |");
+    println!("|---:|---:|---:|---:|---:|---:|");
+    let mut previous: Option<(f64, f64)> = None;
+    for elements in [10, 100, 1000, 10000] {
+        let (per_iteration, per_step, its) = measure(elements);
+        let ratio = |now: f64, before: Option<f64>| {
+            before.map_or("".to_string(), |b| format!("{:.2}", now / b))
+        };
+        println!(
+            "| {elements} | {per_iteration:.2} | {per_step:.2} | {its:.2} | {} | {} |",
+            ratio(per_iteration, previous.map(|p| p.0)),
+            ratio(per_step, previous.map(|p| p.1)),
+        );
+        previous = Some((per_iteration, per_step));
+    }
+}

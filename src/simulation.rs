@@ -124,6 +124,37 @@ pub fn build_rod(p: &SceneParams) -> (Rod, ExcitationKind) {
     }
 }
 
+/// Axial strain at the buckling load of the pinned-pinned straight rod: the Euler load with the
+/// shear correction of a shear-deformable rod, `P = P_E / (1 + P_E / GA)`, over `EA`.
+fn critical_strain(p: &SceneParams, rod: &Rod) -> f64 {
+    let euler = std::f64::consts::PI.powi(2) * rod.section.ei / (p.span * p.span);
+    euler / (1.0 + euler / rod.section.ga) / rod.section.ea
+}
+
+/// Newton's starting point for the buckled beam: the first buckling mode `A sin(pi s / L)` in the
+/// chosen well, with the amplitude of the inextensible elastica at small amplitude,
+/// `Delta = eps_cr L + (pi A)^2 / (4 L)`, and the matching axial displacements and rotations.
+/// (A ramp of the end shortening through the bifurcation is fragile on fine meshes; this guess
+/// lies within Newton's quadratic basin of the buckled state for any mesh.)
+fn buckled_guess(p: &SceneParams, rod: &Rod, u: &mut [f64]) {
+    let (span, shortening) = (p.span, p.pre_shortening);
+    let strain = critical_strain(p, rod).min(shortening / span);
+    let geometric = (shortening - strain * span).max(0.0);
+    let amplitude = p.well.signum() as f64 * (4.0 * span * geometric).sqrt() / std::f64::consts::PI;
+    let k = std::f64::consts::PI / span;
+    for (i, &s) in rod.node_s.iter().enumerate() {
+        let slope = amplitude * k * (k * s).cos();
+        u[3 * i + U1] =
+            -strain * s - 0.25 * (amplitude * k).powi(2) * (s + (2.0 * k * s).sin() / (2.0 * k));
+        u[3 * i + U2] = amplitude * (k * s).sin();
+        u[3 * i + ROTATION] = slope.atan();
+    }
+    let last = rod.last_node();
+    u[3 * last + U1] = -shortening;
+    u[3 * last + U2] = 0.0;
+    u[U2] = 0.0;
+}
+
 /// The initial static state of model.md: the buckled beam in its well, or the arch under `P0`.
 pub fn initial_displacements(p: &SceneParams, rod: &Rod) -> Result<Vec<f64>, SimError> {
     let mut solver = StaticSolver::new(rod);
@@ -131,37 +162,33 @@ pub fn initial_displacements(p: &SceneParams, rod: &Rod) -> Result<Vec<f64>, Sim
     let fail = |what: &str, e: NewtonFailure| SimError::InitialState(format!("{what}: {e}"));
     match p.kind {
         SceneKind::BuckledBeam => {
-            if p.pre_shortening == 0.0 {
-                return Ok(u);
-            }
-            // Ramp the end shortening with a small transverse imperfection towards the chosen
-            // well (a uniform load giving a linear deflection of 1e-4 L), then remove it.
-            let span = p.span;
-            let q_imperfection = 1e-4 * span * 384.0 * rod.section.ei / (5.0 * span.powi(4));
-            let mut imperfection = vec![0.0; rod.dofs()];
-            rod.add_uniform_transverse_load(
-                &mut imperfection,
-                -(p.well.signum() as f64) * q_imperfection,
-            );
-            let last = rod.last_node();
-            for k in 1..=RAMP_STEPS {
-                let shortening = p.pre_shortening * k as f64 / RAMP_STEPS as f64;
-                // Predictor: spread the new shortening linearly along the span.
-                let previous = -u[3 * last + U1];
-                for i in 0..rod.nodes() {
-                    u[3 * i + U1] -= (shortening - previous) * rod.node_s[i] / rod.curve.length();
-                }
-                u[3 * last + U1] = -shortening;
-                solver
-                    .solve(rod, &mut u, &imperfection)
-                    .map_err(|e| fail("end-shortening ramp", e))?;
-            }
             let zero = vec![0.0; rod.dofs()];
+            let in_well = |u: &[f64]| rod.interpolate(u, rod.midspan(), U2) * p.well as f64 > 0.0;
+            buckled_guess(p, rod, &mut u);
             solver
                 .solve(rod, &mut u, &zero)
-                .map_err(|e| fail("imperfection removal", e))?;
-            let w_mid = rod.interpolate(&u, rod.midspan(), U2);
-            if w_mid * p.well as f64 <= 0.0 {
+                .map_err(|e| fail("buckled equilibrium", e))?;
+            if in_well(&u) {
+                return Ok(u);
+            }
+            // Newton found the straight state. It is the answer if it is stable (this mesh does
+            // not buckle at this shortening); otherwise push it into the well with a transverse
+            // imperfection load (a linear deflection of 1e-3 L) and remove that again.
+            if solver.factored_tangent().negative_pivots() == 0 {
+                return Ok(u);
+            }
+            let q = 1e-3 * p.span * 384.0 * rod.section.ei / (5.0 * p.span.powi(4));
+            let mut imperfection = vec![0.0; rod.dofs()];
+            rod.add_uniform_transverse_load(&mut imperfection, -(p.well as f64) * q);
+            buckled_guess(p, rod, &mut u);
+            solver
+                .solve(rod, &mut u, &imperfection)
+                .map_err(|e| fail("imperfect beam", e))?;
+            solver
+                .solve(rod, &mut u, &zero)
+                .map_err(|e| fail("buckled equilibrium", e))?;
+            if !in_well(&u) {
+                let w_mid = rod.interpolate(&u, rod.midspan(), U2);
                 return Err(SimError::InitialState(format!(
                     "the static state has w_mid = {w_mid:.4e}, not in the well {}",
                     p.well

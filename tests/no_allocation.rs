@@ -1,0 +1,44 @@
+//! The step loop allocates nothing: a counting global allocator sees zero allocations during
+//! `Simulation::advance` once the simulation is built (all buffers are preallocated).
+use georod::scene::{SceneKind, SceneParams};
+use georod::simulation::Simulation;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn advance_does_not_allocate() {
+    for kind in SceneKind::ALL {
+        let params = SceneParams::with(kind, [("F", 1.0)]).unwrap();
+        let mut sim = Simulation::new(params).unwrap();
+        sim.advance(1e-4, 0.1).unwrap(); // first step outside the count
+        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        for _ in 0..50 {
+            sim.advance(1e-4, 0.1).unwrap();
+            std::hint::black_box(sim.outputs());
+        }
+        let after = ALLOCATIONS.load(Ordering::Relaxed);
+        assert_eq!(
+            after - before,
+            0,
+            "{kind}: {} allocations in 50 steps",
+            after - before
+        );
+    }
+}
