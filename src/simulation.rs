@@ -201,14 +201,12 @@ pub fn initial_displacements(p: &SceneParams, rod: &Rod) -> Result<Vec<f64>, Sim
                 return Ok(u);
             }
             let mut f_ext = vec![0.0; rod.dofs()];
-            for k in 1..=RAMP_STEPS {
-                f_ext.fill(0.0);
-                let load = p.preload * k as f64 / RAMP_STEPS as f64;
-                rod.add_point_transverse_load(&mut f_ext, rod.midspan(), load);
-                solver
-                    .solve(rod, &mut u, &f_ext)
-                    .map_err(|e| fail("preload ramp", e))?;
-            }
+            rod.add_point_transverse_load(&mut f_ext, rod.midspan(), p.preload);
+            solver
+                .solve_ramped(rod, &mut u, &f_ext, RAMP_STEPS)
+                .map_err(|(k, e)| {
+                    fail(&format!("preload ramp, load step {k} of {RAMP_STEPS}"), e)
+                })?;
             Ok(u)
         }
     }

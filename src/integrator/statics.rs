@@ -83,6 +83,35 @@ impl StaticSolver {
         }
     }
 
+    /// Reaches `f_int(u) = f_ext` through `steps` equal load steps `k / steps * f_ext` (each
+    /// started from the previous solution); on failure `u` is restored and the error names the
+    /// load step.
+    pub fn solve_ramped(
+        &mut self,
+        rod: &Rod,
+        u: &mut [f64],
+        f_ext: &[f64],
+        steps: usize,
+    ) -> Result<NewtonStats, (usize, NewtonFailure)> {
+        let initial = u.to_vec();
+        let mut load = vec![0.0; f_ext.len()];
+        let mut stats = NewtonStats::default();
+        for k in 1..=steps.max(1) {
+            let factor = k as f64 / steps.max(1) as f64;
+            load.iter_mut()
+                .zip(f_ext)
+                .for_each(|(l, f)| *l = factor * f);
+            match self.solve(rod, u, &load) {
+                Ok(s) => stats = s,
+                Err(e) => {
+                    u.copy_from_slice(&initial);
+                    return Err((k, e));
+                }
+            }
+        }
+        Ok(stats)
+    }
+
     /// The tangent at the last solution, factored: its negative pivot count tells stability.
     pub fn factored_tangent(&self) -> &BlockTridiagonal {
         &self.jac

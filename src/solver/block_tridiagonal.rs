@@ -165,6 +165,25 @@ impl BlockTridiagonal {
         self.negative_pivots
     }
 
+    /// Number of negative eigenvalues of a symmetric `A` (after factorization): by Sylvester's law
+    /// of inertia it equals that of the block diagonal of `A = L D L^T`, i.e. of the pivot blocks
+    /// (whose inverses `diag` holds; an inverse has the same eigenvalue signs). Zero means `A` is
+    /// positive definite: a stable equilibrium when `A` is the tangent stiffness.
+    pub fn negative_eigenvalues(&self) -> usize {
+        assert!(self.factored, "inertia before factor");
+        self.diag
+            .iter()
+            .map(|inverse| {
+                let symmetric = 0.5 * (inverse + inverse.transpose());
+                symmetric
+                    .symmetric_eigenvalues()
+                    .iter()
+                    .filter(|&&l| l < 0.0)
+                    .count()
+            })
+            .sum()
+    }
+
     /// `ln |det A|` (after factorization).
     pub fn log_abs_determinant(&self) -> f64 {
         self.log_abs_det
