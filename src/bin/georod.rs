@@ -121,10 +121,60 @@ fn run(args: &[String]) -> Result<(), String> {
                 1e6 * seconds / steps as f64
             );
         }
+        "path" => {
+            let max_load = o.stop.unwrap_or(f64::INFINITY);
+            let csv = static_path(&o, max_load)?;
+            match &o.output {
+                Some(path) => std::fs::write(path, csv).map_err(|e| format!("{path}: {e}"))?,
+                None => print!("{csv}"),
+            }
+        }
         "demo" => demo(o.output.as_deref().unwrap_or("out"))?,
         _ => return Err(USAGE.to_string()),
     }
     Ok(())
+}
+
+/// The static crown-load path of an arch scene (arc-length continuation from the unloaded arch):
+/// rows `load,w_mid,stable,negative_eigenvalues`, then the critical points as comment lines.
+fn static_path(o: &Options, max_load: f64) -> Result<String, String> {
+    use georod::integrator::continuation::{critical_points, follow_path, ContinuationSettings};
+    let params = SceneParams::with(o.scene, o.overrides.iter().map(|(k, v)| (k.as_str(), *v)))
+        .map_err(|e| e.to_string())?;
+    let (rod, _) = georod::simulation::build_rod(&params);
+    let u0 = georod::simulation::initial_displacements(&params, &rod).map_err(|e| e.to_string())?;
+    let mut q = vec![0.0; rod.dofs()];
+    rod.add_point_transverse_load(&mut q, rod.midspan(), 1.0);
+    let mut settings = ContinuationSettings::for_rod(&rod, max_load);
+    settings.max_displacement = 4.0 * params.rise.max(params.pre_shortening);
+    let path = follow_path(&rod, &u0, params.preload, &q, &settings);
+    let mut csv = String::from("load,w_mid,stable,negative_eigenvalues\n");
+    let mid = rod.midspan();
+    for p in &path.points {
+        let w = rod.interpolate(&p.u, mid, georod::model::rod::U2);
+        let _ = writeln!(
+            csv,
+            "{:e},{w:e},{},{}",
+            p.load,
+            p.negative_eigenvalues == 0,
+            p.negative_eigenvalues
+        );
+    }
+    for c in critical_points(&path) {
+        let w = rod.interpolate(&path.points[c.index].u, mid, georod::model::rod::U2);
+        let _ = writeln!(
+            csv,
+            "# {:?} at load {:.6e} (w_mid about {w:.4e})",
+            c.kind, c.load
+        );
+    }
+    let _ = writeln!(
+        csv,
+        "# stopped: {} ({} points)",
+        path.stop_reason,
+        path.points.len()
+    );
+    Ok(csv)
 }
 
 /// The default BuckledBeam through the core: static buckled state and a few forcing periods.

@@ -1,4 +1,5 @@
 //! Solvers in time and for equilibrium: Newton settings, static Newton, the implicit midpoint rule.
+pub mod continuation;
 pub mod midpoint;
 pub mod newton;
 pub mod statics;

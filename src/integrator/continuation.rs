@@ -1,0 +1,309 @@
+//! Static path following by the arc-length method (Crisfield's cylindrical constraint): the load
+//! factor `lambda` of a reference load `q` is an unknown, and each increment has a fixed length
+//! `|du| = dl` in displacement space, so the path passes limit points (load maxima) and
+//! snap-backs. Stability along the path comes from the inertia of the tangent (negative
+//! eigenvalues of the factored block-tridiagonal matrix): a change of that count marks a critical
+//! point, a limit point if `lambda` turns there, a bifurcation point otherwise.
+use super::newton::{inf_norm, NewtonSettings};
+use crate::model::Rod;
+use crate::solver::BlockTridiagonal;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContinuationSettings {
+    /// First arc length (a displacement norm).
+    pub arc_length: f64,
+    pub min_arc_length: f64,
+    pub max_arc_length: f64,
+    /// Newton iterations aimed at per increment (the arc length adapts to it).
+    pub target_iterations: u32,
+    /// Stop after this many points.
+    pub max_points: usize,
+    /// Stop when `|lambda|` exceeds this.
+    pub max_load: f64,
+    /// Stop when the largest displacement exceeds this.
+    pub max_displacement: f64,
+    /// +1: start with increasing load, -1: decreasing.
+    pub initial_direction: f64,
+    pub newton: NewtonSettings,
+}
+
+impl ContinuationSettings {
+    pub fn for_rod(rod: &Rod, max_load: f64) -> ContinuationSettings {
+        let length = rod.curve.length();
+        ContinuationSettings {
+            arc_length: 1e-3 * length,
+            min_arc_length: 1e-7 * length,
+            max_arc_length: 2e-2 * length,
+            target_iterations: 5,
+            max_points: 2000,
+            max_load,
+            max_displacement: length,
+            initial_direction: 1.0,
+            newton: NewtonSettings {
+                max_iterations: 20,
+                ..NewtonSettings::tight(length)
+            },
+        }
+    }
+}
+
+/// A converged point of the equilibrium path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathPoint {
+    pub load: f64,
+    pub u: Vec<f64>,
+    /// Negative eigenvalues of the tangent: 0 on stable branches.
+    pub negative_eigenvalues: usize,
+    pub iterations: u32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CriticalKind {
+    /// The load factor has a local extremum (snap-through under load control).
+    LimitPoint,
+    /// The stability changes without a turn in the load (a branch crosses the path).
+    Bifurcation,
+}
+
+/// A critical point between path points `index - 1` and `index`; `load` is interpolated (for a
+/// limit point: the vertex of the parabola through the three points around the turn).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CriticalPoint {
+    pub index: usize,
+    pub kind: CriticalKind,
+    pub load: f64,
+}
+
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Path {
+    pub points: Vec<PathPoint>,
+    /// Why the continuation stopped.
+    pub stop_reason: String,
+}
+
+/// Buffers of the continuation.
+struct Work {
+    jac: BlockTridiagonal,
+    f: Vec<f64>,
+    du_q: Vec<f64>,
+    du_r: Vec<f64>,
+}
+
+impl Work {
+    /// Factors `K_T(u)` and returns `f_int(u)` in `self.f`.
+    fn factor(&mut self, rod: &Rod, u: &[f64]) -> bool {
+        self.jac.set_zero();
+        rod.internal_force_and_tangent(u, &mut self.f, &mut self.jac, 1.0);
+        self.jac.constrain(&rod.fixed);
+        self.jac.factor().is_ok()
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Follows the equilibrium path `f_int(u) = lambda q` from the equilibrium `u0` at `lambda0`.
+pub fn follow_path(
+    rod: &Rod,
+    u0: &[f64],
+    load0: f64,
+    q: &[f64],
+    settings: &ContinuationSettings,
+) -> Path {
+    let n = rod.dofs();
+    let mut q = q.to_vec();
+    rod.zero_constrained(&mut q);
+    let mut w = Work {
+        jac: BlockTridiagonal::new(rod.nodes()),
+        f: vec![0.0; n],
+        du_q: vec![0.0; n],
+        du_r: vec![0.0; n],
+    };
+    let mut path = Path::default();
+    if !w.factor(rod, u0) {
+        path.stop_reason = "singular tangent at the start".into();
+        return path;
+    }
+    path.points.push(PathPoint {
+        load: load0,
+        u: u0.to_vec(),
+        negative_eigenvalues: w.jac.negative_eigenvalues(),
+        iterations: 0,
+    });
+    let mut dl = settings.arc_length;
+    let mut previous_du: Option<Vec<f64>> = None;
+    let mut du = vec![0.0; n];
+    let mut u = vec![0.0; n];
+    while path.points.len() < settings.max_points {
+        let last = path.points.last().expect("path starts with a point");
+        // Predictor along the tangent K du_q = q, oriented like the previous increment.
+        if !w.factor(rod, &last.u) {
+            path.stop_reason = "singular tangent on the path (exactly at a critical point)".into();
+            return path;
+        }
+        w.du_q.copy_from_slice(&q);
+        w.jac.solve_in_place(&mut w.du_q);
+        let norm_q = dot(&w.du_q, &w.du_q).sqrt();
+        let sign = match &previous_du {
+            Some(prev) => dot(prev, &w.du_q).signum(),
+            None => settings.initial_direction.signum(),
+        };
+        let mut dload = sign * dl / norm_q;
+        du.iter_mut().zip(&w.du_q).for_each(|(d, t)| *d = dload * t);
+        match correct(
+            rod, &q, last, &mut du, &mut dload, dl, &mut u, &mut w, settings,
+        ) {
+            Some(iterations) => {
+                let load = last.load + dload;
+                let stable = w.factor(rod, &u);
+                let negative = if stable {
+                    w.jac.negative_eigenvalues()
+                } else {
+                    usize::MAX
+                };
+                path.points.push(PathPoint {
+                    load,
+                    u: u.clone(),
+                    negative_eigenvalues: negative,
+                    iterations,
+                });
+                previous_du = Some(du.clone());
+                let ratio = settings.target_iterations as f64 / iterations.max(1) as f64;
+                dl = (dl * ratio.sqrt().clamp(0.5, 2.0))
+                    .clamp(settings.min_arc_length, settings.max_arc_length);
+                if load.abs() > settings.max_load {
+                    path.stop_reason = format!("load factor beyond {}", settings.max_load);
+                    return path;
+                }
+                if inf_norm(&u) > settings.max_displacement {
+                    path.stop_reason = format!("displacement beyond {}", settings.max_displacement);
+                    return path;
+                }
+            }
+            None => {
+                dl *= 0.25;
+                if dl < settings.min_arc_length {
+                    path.stop_reason = "arc length below its minimum: Newton fails".into();
+                    return path;
+                }
+            }
+        }
+    }
+    path.stop_reason = format!("{} points", settings.max_points);
+    path
+}
+
+/// Newton corrector on the arc-length constraint `|du| = dl`; returns the iterations, with
+/// `u = u_last + du` and `dload` updated, or `None` if it fails.
+#[allow(clippy::too_many_arguments)]
+fn correct(
+    rod: &Rod,
+    q: &[f64],
+    last: &PathPoint,
+    du: &mut [f64],
+    dload: &mut f64,
+    dl: f64,
+    u: &mut [f64],
+    w: &mut Work,
+    settings: &ContinuationSettings,
+) -> Option<u32> {
+    for iteration in 1..=settings.newton.max_iterations {
+        u.iter_mut()
+            .zip(&last.u)
+            .zip(du.iter())
+            .for_each(|((x, a), d)| *x = a + d);
+        if !w.factor(rod, u) {
+            return None;
+        }
+        let load = last.load + *dload;
+        // Residual R = f_int - lambda q; du_r = -K^-1 R, du_q = K^-1 q.
+        w.du_r
+            .iter_mut()
+            .zip(&w.f)
+            .zip(q)
+            .for_each(|((r, f), qq)| *r = load * qq - f);
+        rod.zero_constrained(&mut w.du_r);
+        if w.du_r.iter().any(|x| !x.is_finite()) {
+            return None;
+        }
+        w.jac.solve_in_place(&mut w.du_r);
+        w.du_q.copy_from_slice(q);
+        w.jac.solve_in_place(&mut w.du_q);
+        // |du + du_r + c du_q|^2 = dl^2: a c^2 + b c + k = 0.
+        let base: Vec<f64> = du.iter().zip(&w.du_r).map(|(d, r)| d + r).collect();
+        let a = dot(&w.du_q, &w.du_q);
+        let b = 2.0 * dot(&w.du_q, &base);
+        let k = dot(&base, &base) - dl * dl;
+        let disc = b * b - 4.0 * a * k;
+        if disc < 0.0 || a == 0.0 {
+            return None;
+        }
+        let roots = [
+            (-b + disc.sqrt()) / (2.0 * a),
+            (-b - disc.sqrt()) / (2.0 * a),
+        ];
+        // The root whose increment turns least from the current one.
+        let score = |c: f64| dot(du, &base) + c * dot(du, &w.du_q);
+        let c = if score(roots[0]) >= score(roots[1]) {
+            roots[0]
+        } else {
+            roots[1]
+        };
+        let mut correction = 0.0f64;
+        for ((d, bb), t) in du.iter_mut().zip(&base).zip(&w.du_q) {
+            let new = bb + c * t;
+            correction = correction.max((new - *d).abs());
+            *d = new;
+        }
+        *dload += c;
+        if settings.newton.converged(correction, inf_norm(du)) {
+            u.iter_mut()
+                .zip(&last.u)
+                .zip(du.iter())
+                .for_each(|((x, a), d)| *x = a + d);
+            return Some(iteration);
+        }
+    }
+    None
+}
+
+/// The critical points of a path: where the number of negative tangent eigenvalues changes.
+pub fn critical_points(path: &Path) -> Vec<CriticalPoint> {
+    let p = &path.points;
+    let mut found = Vec::new();
+    for i in 1..p.len() {
+        if p[i].negative_eigenvalues == p[i - 1].negative_eigenvalues {
+            continue;
+        }
+        let turns = |j: usize| {
+            j >= 1
+                && j + 1 < p.len()
+                && (p[j].load - p[j - 1].load) * (p[j + 1].load - p[j].load) < 0.0
+        };
+        // Where the load turns next to the change, refine by a parabola through three points.
+        let vertex = [i - 1, i].into_iter().find(|&j| turns(j));
+        match vertex {
+            Some(j) => {
+                let (y0, y1, y2) = (p[j - 1].load, p[j].load, p[j + 1].load);
+                let curvature = y0 - 2.0 * y1 + y2;
+                let load = if curvature != 0.0 {
+                    y1 - 0.125 * (y2 - y0).powi(2) / curvature
+                } else {
+                    y1
+                };
+                found.push(CriticalPoint {
+                    index: i,
+                    kind: CriticalKind::LimitPoint,
+                    load,
+                });
+            }
+            None => found.push(CriticalPoint {
+                index: i,
+                kind: CriticalKind::Bifurcation,
+                load: 0.5 * (p[i].load + p[i - 1].load),
+            }),
+        }
+    }
+    found
+}
