@@ -44,8 +44,12 @@ pub struct Variable {
 impl Variable {
     /// The allowed range in words, e.g. `(-1, 0.5)` or `>= 0`; `None` if any finite value goes.
     pub fn range_text(&self) -> Option<String> {
-        let lo = self.min.map(|m| (if self.min_exclusive { "(" } else { "[" }, m));
-        let hi = self.max.map(|m| (if self.max_exclusive { ")" } else { "]" }, m));
+        let lo = self
+            .min
+            .map(|m| (if self.min_exclusive { "(" } else { "[" }, m));
+        let hi = self
+            .max
+            .map(|m| (if self.max_exclusive { ")" } else { "]" }, m));
         match (lo, hi) {
             (Some((l, a)), Some((r, b))) => Some(format!("{l}{a}, {b}{r}")),
             (Some((l, a)), None) => Some(format!("{} {a}", if l == "(" { ">" } else { ">=" })),
@@ -56,8 +60,20 @@ impl Variable {
 
     /// Whether `value` lies in the declared range (and is finite).
     pub fn admits(&self, value: f64) -> bool {
-        let above = self.min.is_none_or(|m| if self.min_exclusive { value > m } else { value >= m });
-        let below = self.max.is_none_or(|m| if self.max_exclusive { value < m } else { value <= m });
+        let above = self.min.is_none_or(|m| {
+            if self.min_exclusive {
+                value > m
+            } else {
+                value >= m
+            }
+        });
+        let below = self.max.is_none_or(|m| {
+            if self.max_exclusive {
+                value < m
+            } else {
+                value <= m
+            }
+        });
         value.is_finite() && above && below
     }
 }
