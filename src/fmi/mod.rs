@@ -1,1 +1,20 @@
 //! FMI 2.0 Co-Simulation C API.
+//!
+//! One binary serves every scene: `fmi2Instantiate` picks the scene by its GUID
+//! ([`crate::variables::GUIDS`], indexed like `SCENE_NAMES`). Each instance is a boxed
+//! [`instance::Instance`] behind the opaque `fmi2Component`; there is no global state and no
+//! thread, so instances may live on different threads at once.
+//!
+//! - [`types`]: the C types of the FMI 2.0 headers;
+//! - [`logging`]: log categories ([`logging::LOG_CATEGORIES`], also used for the XML) and the
+//!   per-instance logger;
+//! - [`instance`]: state machine, values, stepping (testable Rust);
+//! - [`fmu_state`]: FMU state snapshots and their serialized form;
+//! - [`api`]: the exported `extern "C"` functions;
+//! - [`uri`]: `fmuResourceLocation` parsing.
+pub mod api;
+pub mod fmu_state;
+pub mod instance;
+pub mod logging;
+pub mod types;
+pub mod uri;
