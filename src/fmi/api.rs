@@ -508,7 +508,13 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         let slot = out_ref(FMUstate, "FMUstate")?;
         let data = fmu_state::deserialize(bytes, inst.kind(), inst.params().elements)
             .map_err(Failure::Error)?;
-        *slot = FmuState::into_raw(data) as fmi2FMUstate;
+        // Like fmi2GetFMUstate: a state passed in is reused (fmpy passes one "for re-use");
+        // overwriting the pointer would leak it.
+        if slot.is_null() {
+            *slot = FmuState::into_raw(data) as fmi2FMUstate;
+        } else {
+            fmu_state(*slot)?.data = data;
+        }
         inst.log
             .event(|| format!("FMU state deserialized ({size} bytes)"));
         Ok(())

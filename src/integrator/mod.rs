@@ -4,6 +4,6 @@ pub mod midpoint;
 pub mod newton;
 pub mod statics;
 
-pub use midpoint::{DynamicState, Midpoint};
+pub use midpoint::{DynamicState, Midpoint, Scheme};
 pub use newton::{NewtonFailure, NewtonSettings, NewtonStats};
 pub use statics::StaticSolver;

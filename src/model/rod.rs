@@ -108,6 +108,26 @@ impl Rod {
         }
     }
 
+    /// `f =` the energy-momentum discrete gradient between `ua` and `ub` (overwrites), and
+    /// `jac += scale * K_T((ua + ub) / 2)`, its derivative up to `O(|ub - ua|)`.
+    pub fn discrete_gradient_and_tangent(
+        &self,
+        ua: &[f64],
+        ub: &[f64],
+        f: &mut [f64],
+        jac: &mut BlockTridiagonal,
+        scale: f64,
+    ) {
+        f.fill(0.0);
+        for (e, el) in self.elements.iter().enumerate() {
+            let (a, b) = (Self::element_dofs(ua, e), Self::element_dofs(ub, e));
+            let fe = el.discrete_gradient(&self.section, &a, &b);
+            let (_, ke) = el.force_and_tangent(&self.section, &(0.5 * (a + b)));
+            add_element_vector(f, e, &fe);
+            jac.add_element(e, &ke, scale);
+        }
+    }
+
     /// `jac += scale * M`.
     pub fn add_mass(&self, jac: &mut BlockTridiagonal, scale: f64) {
         for (e, m) in self.inertia.iter().enumerate() {

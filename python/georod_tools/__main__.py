@@ -1,0 +1,7 @@
+"""``python -m georod_tools``: the chaos-analysis command line (see :mod:`georod_tools.cli`)."""
+
+import sys
+
+from georod_tools.cli import main
+
+sys.exit(main())

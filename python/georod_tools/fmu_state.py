@@ -1,0 +1,216 @@
+"""Read and patch the georod FMU's serialized state (``fmi2SerializeFMUstate``) in Python.
+
+Why: the Lyapunov exponent needs the perturbed trajectory put at "reference + small separation".
+The FMU has no setter for its internal displacements and velocities, but its serialized state is a
+documented byte layout (src/fmi/fmu_state.rs): decode the vectors, patch them, and
+``fmi2DeSerializeFMUstate`` the bytes into the second instance.
+
+Layout (bincode 1.3 default options: little endian, fixed-width integers, u64 length prefixes,
+u8 Option tags, u32 enum variant indices, f64 as 8 bytes)::
+
+    Header { magic: [u8; 8] = b"GEOROD\\0S", format_version: u32 (= 1), scene: String,
+             elements: u64 }
+    Body   { fmi_state: enum (u32), experiment: { tolerance: Option<f64>, start_time: f64,
+             stop_time: Option<f64> }, params: Vec<(String, f64)>, f_ctrl: f64,
+             snapshot: Option<Snapshot> }
+    Snapshot { version: u32 (= 1), kind: enum (u32), elements: u64, time: f64,
+               displacements: Vec<f64>, velocities: Vec<f64>, forcing_amplitude: f64,
+               forcing_frequency: f64, last_newton_iterations: u32 }
+
+The vectors hold 3 entries per node (u1, u2, w), prescribed ones included (src/model/rod.rs).
+Patching replaces values in place, so the layout and length never change.
+"""
+
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass
+
+import numpy as np
+
+MAGIC = b"GEOROD\x00S"
+FORMAT_VERSION = 1
+SNAPSHOT_VERSION = 1
+DOFS_PER_NODE = 3
+U1, U2, ROTATION = 0, 1, 2
+
+#: Prescribed degrees of freedom per scene: (node, dof) with node -1 = last node (model.md).
+SUPPORTS: dict[str, tuple[tuple[int, int], ...]] = {
+    "BuckledBeam": ((0, U1), (0, U2), (-1, U1), (-1, U2)),
+    "PinnedArch": ((0, U1), (0, U2), (-1, U1), (-1, U2)),
+    "ClampedArch": ((0, U1), (0, U2), (0, ROTATION), (-1, U1), (-1, U2), (-1, ROTATION)),
+}
+
+
+class StateFormatError(ValueError):
+    """The bytes are not a serialized georod state this module understands."""
+
+
+class _Reader:
+    def __init__(self, data: bytes) -> None:
+        self.data = data
+        self.pos = 0
+
+    def take(self, n: int) -> bytes:
+        if self.pos + n > len(self.data):
+            raise StateFormatError(
+                f"truncated serialized state: need {n} bytes at offset {self.pos}, "
+                f"have {len(self.data) - self.pos}"
+            )
+        b = self.data[self.pos : self.pos + n]
+        self.pos += n
+        return b
+
+    def u8(self) -> int:
+        return self.take(1)[0]
+
+    def u32(self) -> int:
+        return int(struct.unpack("<I", self.take(4))[0])
+
+    def u64(self) -> int:
+        return int(struct.unpack("<Q", self.take(8))[0])
+
+    def f64(self) -> float:
+        return float(struct.unpack("<d", self.take(8))[0])
+
+    def string(self) -> str:
+        return self.take(self.u64()).decode("utf-8")
+
+    def option_f64(self) -> float | None:
+        tag = self.u8()
+        if tag not in (0, 1):
+            raise StateFormatError(f"bad Option tag {tag} at offset {self.pos - 1}")
+        return self.f64() if tag else None
+
+    def f64_vec(self) -> tuple[int, np.ndarray]:
+        n = self.u64()
+        start = self.pos
+        return start, np.frombuffer(self.take(8 * n), dtype="<f8").astype(float)
+
+
+@dataclass
+class DecodedState:
+    """The parts of a serialized state the analyses use, with where the vectors sit.
+
+    u_offset / v_offset: byte offsets of the first f64 of the displacement / velocity vectors.
+    """
+
+    scene: str
+    elements: int
+    time: float
+    displacements: np.ndarray
+    velocities: np.ndarray
+    forcing_amplitude: float
+    forcing_frequency: float
+    params: dict[str, float]
+    u_offset: int
+    v_offset: int
+
+    @property
+    def dofs(self) -> int:
+        return self.displacements.size
+
+
+def decode_state(blob: bytes) -> DecodedState:
+    """Decodes a serialized georod FMU state; raises :class:`StateFormatError` on anything
+    unexpected (wrong magic, version, truncation, trailing bytes, no simulation snapshot)."""
+    r = _Reader(bytes(blob))
+    if r.take(8) != MAGIC:
+        raise StateFormatError("not a serialized georod FMU state (wrong magic bytes)")
+    version = r.u32()
+    if version != FORMAT_VERSION:
+        raise StateFormatError(
+            f"serialized state format {version}, this module reads {FORMAT_VERSION}"
+        )
+    scene = r.string()
+    elements = r.u64()
+    r.u32()  # fmi_state
+    r.option_f64()  # experiment.tolerance
+    r.f64()  # experiment.start_time
+    r.option_f64()  # experiment.stop_time
+    params = {}
+    for _ in range(r.u64()):
+        name = r.string()
+        params[name] = r.f64()
+    r.f64()  # f_ctrl
+    if r.u8() != 1:
+        raise StateFormatError("the state holds no simulation (taken before initialization)")
+    snap_version = r.u32()
+    if snap_version != SNAPSHOT_VERSION:
+        raise StateFormatError(
+            f"snapshot version {snap_version}, this module reads {SNAPSHOT_VERSION}"
+        )
+    r.u32()  # kind
+    if r.u64() != elements:
+        raise StateFormatError("snapshot and header disagree on the number of elements")
+    time = r.f64()
+    u_off, u = r.f64_vec()
+    v_off, v = r.f64_vec()
+    amplitude = r.f64()
+    frequency = r.f64()
+    r.u32()  # last_newton_iterations
+    if r.pos != len(r.data):
+        raise StateFormatError(f"{len(r.data) - r.pos} unexpected trailing bytes")
+    dofs = DOFS_PER_NODE * (elements + 1)
+    if u.size != dofs or v.size != dofs:
+        raise StateFormatError(f"vectors of length {u.size}/{v.size}, expected {dofs}")
+    return DecodedState(scene, elements, time, u, v, amplitude, frequency, params, u_off, v_off)
+
+
+def encode_state(template: bytes, displacements: np.ndarray, velocities: np.ndarray) -> bytes:
+    """`template` (a serialized state) with its displacement and velocity vectors replaced."""
+    st = decode_state(template)
+    u = np.asarray(displacements, dtype="<f8")
+    v = np.asarray(velocities, dtype="<f8")
+    if u.shape != (st.dofs,) or v.shape != (st.dofs,):
+        raise ValueError(f"vectors must have shape ({st.dofs},), got {u.shape} and {v.shape}")
+    if not (np.all(np.isfinite(u)) and np.all(np.isfinite(v))):
+        raise ValueError("non-finite displacement or velocity")
+    out = bytearray(template)
+    out[st.u_offset : st.u_offset + 8 * st.dofs] = u.tobytes()
+    out[st.v_offset : st.v_offset + 8 * st.dofs] = v.tobytes()
+    return bytes(out)
+
+
+def free_mask(scene: str, elements: int) -> np.ndarray:
+    """True for every degree of freedom that is not prescribed by the supports of `scene`."""
+    if scene not in SUPPORTS:
+        raise ValueError(f"unknown scene {scene!r}")
+    nodes = elements + 1
+    mask = np.ones(DOFS_PER_NODE * nodes, dtype=bool)
+    for node, dof in SUPPORTS[scene]:
+        mask[DOFS_PER_NODE * (node % nodes) + dof] = False
+    return mask
+
+
+def _w_string(s: str) -> bytes:
+    b = s.encode("utf-8")
+    return struct.pack("<Q", len(b)) + b
+
+
+def build_state(
+    scene: str,
+    elements: int,
+    time: float,
+    displacements: np.ndarray,
+    velocities: np.ndarray,
+    params: dict[str, float] | None = None,
+    forcing: tuple[float, float] = (0.0, 1.0),
+) -> bytes:
+    """A complete serialized state in the same layout (for unit tests of the codec without an
+    FMU; the FMU would also accept it if `params` listed every parameter of the scene)."""
+    u = np.asarray(displacements, dtype="<f8")
+    v = np.asarray(velocities, dtype="<f8")
+    out = bytearray(MAGIC)
+    out += struct.pack("<I", FORMAT_VERSION) + _w_string(scene) + struct.pack("<Q", elements)
+    out += struct.pack("<I", 2)  # fmi_state = StepComplete
+    out += b"\x00" + struct.pack("<d", 0.0) + b"\x00"  # experiment
+    params = params or {}
+    out += struct.pack("<Q", len(params))
+    for name, value in params.items():
+        out += _w_string(name) + struct.pack("<d", value)
+    out += struct.pack("<d", 0.0)  # f_ctrl
+    out += b"\x01" + struct.pack("<IIQd", SNAPSHOT_VERSION, 0, elements, time)
+    out += struct.pack("<Q", u.size) + u.tobytes() + struct.pack("<Q", v.size) + v.tobytes()
+    out += struct.pack("<ddI", forcing[0], forcing[1], 0)
+    return bytes(out)

@@ -1,0 +1,84 @@
+"""Session fixtures: the three FMUs (built by scripts/build_fmus when missing or stale), each
+extracted once for the FMU2Slave tests, and the core's CLI for the reference trajectories."""
+
+from __future__ import annotations
+
+import shutil
+from collections.abc import Iterator
+from pathlib import Path
+
+import fmpy
+import pytest
+
+from helpers import FMU_DIR, GEOROD_CLI, RELEASE_DIR, REPO, SCENES, FmuInfo, run_cmd
+
+RELEASE_LIB = RELEASE_DIR / "libgeorod.so"
+BUILD_FMUS = REPO / "scripts" / "build_fmus"
+
+
+def _stale(fmus: list[Path]) -> bool:
+    if not all(p.exists() for p in fmus):
+        return True
+    if RELEASE_LIB.exists():
+        return min(p.stat().st_mtime for p in fmus) < RELEASE_LIB.stat().st_mtime
+    return False
+
+
+@pytest.fixture(scope="session")
+def fmu_paths() -> dict[str, Path]:
+    """target/fmu/<Scene>.fmu for every scene; runs scripts/build_fmus once if any is missing or
+    older than the release library."""
+    fmus = [FMU_DIR / f"{s}.fmu" for s in SCENES]
+    if _stale(fmus):
+        if not BUILD_FMUS.exists():
+            pytest.fail(f"FMUs missing or stale and {BUILD_FMUS} does not exist")
+        r = run_cmd([BUILD_FMUS], timeout=1200)
+        if r.returncode != 0:
+            pytest.fail(
+                f"scripts/build_fmus failed ({r.returncode}):\n"
+                f"{r.stdout[-3000:]}\n{r.stderr[-3000:]}"
+            )
+        missing = [p for p in fmus if not p.exists()]
+        if missing:
+            pytest.fail(f"scripts/build_fmus did not produce {missing}")
+    return {s: FMU_DIR / f"{s}.fmu" for s in SCENES}
+
+
+@pytest.fixture(scope="session")
+def fmus(
+    fmu_paths: dict[str, Path], tmp_path_factory: pytest.TempPathFactory
+) -> Iterator[dict[str, FmuInfo]]:
+    """Each FMU extracted once (fmpy.extract) with its model description and name -> vr table."""
+    root = tmp_path_factory.mktemp("fmus")
+    infos: dict[str, FmuInfo] = {}
+    for scene, path in fmu_paths.items():
+        unzipdir = Path(fmpy.extract(str(path), unzipdir=str(root / scene)))
+        md = fmpy.read_model_description(str(unzipdir))
+        infos[scene] = FmuInfo.from_model_description(scene, path, unzipdir, md)
+    yield infos
+    shutil.rmtree(root, ignore_errors=True)
+
+
+@pytest.fixture(params=SCENES)
+def scene(request: pytest.FixtureRequest) -> str:
+    return str(request.param)
+
+
+@pytest.fixture
+def fmu(fmus: dict[str, FmuInfo], scene: str) -> FmuInfo:
+    return fmus[scene]
+
+
+@pytest.fixture
+def beam(fmus: dict[str, FmuInfo]) -> FmuInfo:
+    return fmus["BuckledBeam"]
+
+
+@pytest.fixture(scope="session")
+def georod_cli() -> Path:
+    """target/release/georod (the core without FMI); built once with cargo if missing."""
+    if not GEOROD_CLI.exists():
+        r = run_cmd(["cargo", "build", "--release", "--bin", "georod"], timeout=1800)
+        if r.returncode != 0 or not GEOROD_CLI.exists():
+            pytest.fail(f"cargo build --release --bin georod failed:\n{r.stderr[-3000:]}")
+    return GEOROD_CLI

@@ -1,0 +1,139 @@
+"""End to end through the BuckledBeam FMU: stroboscopic sampling, Lyapunov exponent, classifier,
+figures and the command line. Each case is short (~1 s)."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from georod_tools.classify import CHAOTIC, PERIODIC
+
+REPO = Path(__file__).resolve().parents[2]
+BEAM_FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
+pytestmark = pytest.mark.skipif(
+    not BEAM_FMU.is_file(), reason=f"{BEAM_FMU} not built yet (run scripts/build_fmus)"
+)
+
+
+def config(**kw):  # noqa: ANN003, ANN201
+    from georod_tools.runner import CaseConfig
+
+    base = {"fmu": str(BEAM_FMU), "transient_periods": 150, "sample_periods": 100}
+    base.update(kw)
+    return CaseConfig(**base)
+
+
+def test_small_orbit_is_period_one() -> None:
+    """Paper Fig. 2a (F = 0.4, Omega = 3500): small orbit around one equilibrium."""
+    from georod_tools.runner import run_case
+
+    r = run_case(config(F=0.4, dense_periods=5))
+    c = r.classification
+    assert (c.kind, c.period) == (PERIODIC, 1), c.note
+    assert abs(r.exponent_per_period) < 0.05  # near zero: almost undamped rotations
+    assert r.exponent_per_second == pytest.approx(r.exponent_per_period * 3500 / (2 * math.pi))
+    t_period = 2 * math.pi / 3500
+    k = np.arange(151, 251)
+    assert np.allclose(r.sample_times, k * t_period, rtol=1e-13, atol=0)  # samples at t = k T
+    assert r.samples.shape == (100, 2)
+    assert r.dense is not None and r.dense.shape == (5 * 20 + 1, 3)
+    assert np.all(r.size > 0)
+    assert np.all(r.samples[:, 0] > 0)  # stays in the upper well (well = +1)
+
+
+def test_chaotic_case() -> None:
+    """F = 1.5 (paper Fig. 2e: globally chaotic): a clearly positive exponent."""
+    from georod_tools.runner import run_case
+
+    r = run_case(config(F=1.5))
+    assert r.classification.kind == CHAOTIC, r.classification.note
+    assert r.exponent_per_period > 0.2
+    assert np.ptp(r.samples[:, 0]) > 0.5  # visits both wells
+
+
+def test_runs_are_deterministic_and_well_parameter() -> None:
+    from georod_tools.runner import run_case
+
+    cfg = config(F=0.9, transient_periods=20, sample_periods=30, params=(("well", -1),))
+    a, b = run_case(cfg), run_case(cfg)
+    assert np.array_equal(a.samples, b.samples)
+    assert a.lyapunov is not None and b.lyapunov is not None
+    assert np.array_equal(a.lyapunov.log_growth, b.lyapunov.log_growth)
+    no_lyap = run_case(replace(cfg, lyapunov=False))
+    assert np.array_equal(no_lyap.samples, a.samples)  # the perturbed twin does not disturb
+
+
+def test_bad_parameters() -> None:
+    from georod_tools.runner import FmuError, run_case
+
+    with pytest.raises(ValueError, match="no parameter 'H'.*pre_shortening"):
+        run_case(config(params=(("H", 1.0),), transient_periods=1, sample_periods=20))
+    with pytest.raises(FmuError, match="d"):
+        run_case(config(params=(("d", -1.0),), transient_periods=1, sample_periods=20))
+    with pytest.raises(ValueError, match="Omega"):
+        config(Omega=0.0)
+
+
+def test_case_figure_and_csv(tmp_path: Path) -> None:
+    from georod_tools.plots import plot_case, write_case_csv
+    from georod_tools.runner import run_case
+
+    r = run_case(config(F=0.7, transient_periods=20, sample_periods=40, dense_periods=10))
+    png = plot_case(r, tmp_path / "case.png")
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    lines = write_case_csv(r, tmp_path / "case.csv").read_text().splitlines()
+    assert lines[0] == "k,t,w_mid,v_mid" and len(lines) == 41
+    assert lines[1].startswith("21,")
+
+
+def test_cli_case(tmp_path: Path) -> None:
+    cmd = [
+        sys.executable,
+        "-m",
+        "georod_tools",
+        "case",
+        "--fmu",
+        str(BEAM_FMU),
+        "--F",
+        "0.4",
+        "--transient",
+        "100",
+        "--periods",
+        "60",
+        "--out",
+        str(tmp_path),
+    ]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300, check=False)
+    assert r.returncode == 0, r.stderr
+    assert "class: period-1" in r.stdout
+    assert (tmp_path / "BuckledBeam_F0.4_Omega3500.png").is_file()
+    assert (tmp_path / "BuckledBeam_F0.4_Omega3500_samples.csv").is_file()
+
+
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["case", "--elements", "1"], "allowed range 2..100000"),
+        (["case", "--Omega", "-3"], "must be > 0"),
+        (["case", "--period-tol", "2"], "allowed range (0, 1)"),
+        (["case", "--set", "well"], "expected NAME=VALUE"),
+        (["case", "--set", "H=1"], "no such parameter"),
+        (["case", "--periods", "5"], "at least one averaged Lyapunov interval"),
+        (["sweep", "--start", "0.4", "--stop", "2", "--count", "0"], "allowed range 1..100000"),
+        (["sweep", "--param", "Omega", "--start", "0", "--stop", "2"], "must be > 0"),
+        (["case", "--fmu", "/nonexistent.fmu"], "no such file"),
+    ],
+)
+def test_cli_errors(args: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
+    from georod_tools.cli import main
+
+    with pytest.raises(SystemExit) as e:
+        main([*args, "--fmu", str(BEAM_FMU)] if "--fmu" not in args else args)
+    assert e.value.code == 2
+    assert message in capsys.readouterr().err

@@ -1,0 +1,80 @@
+"""A Dask sweep gives identical results with 1 and 2 workers (tiny sweep: 3 values, short runs),
+sorted by the parameter, and writes its CSV and PNG."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from georod_tools.sweep import sweep_values
+
+REPO = Path(__file__).resolve().parents[2]
+BEAM_FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
+
+
+def test_sweep_values() -> None:
+    assert sweep_values(0.4, 2.0, 5) == pytest.approx([0.4, 0.8, 1.2, 1.6, 2.0])
+    assert sweep_values(1.0, 3.0, 1) == [1.0]
+    with pytest.raises(ValueError):
+        sweep_values(0.0, 1.0, 0)
+
+
+@pytest.mark.skipif(not BEAM_FMU.is_file(), reason=f"{BEAM_FMU} not built yet (scripts/build_fmus)")
+def test_sweep_independent_of_workers(tmp_path: Path) -> None:
+    from georod_tools.plots import plot_sweep, write_sweep_csv
+    from georod_tools.runner import CaseConfig
+    from georod_tools.sweep import run_sweep
+
+    base = CaseConfig(
+        fmu=str(BEAM_FMU),
+        elements=6,
+        dt_max=2e-5,
+        n_per_period=10,
+        transient_periods=10,
+        sample_periods=25,
+    )
+    values = [2.0, 0.4, 0.9]  # unsorted on purpose
+    one = run_sweep(base, "F", values, workers=1, progress=False)
+    two = run_sweep(base, "F", values, workers=2, progress=False)
+    assert [r.config.F for r in one] == [0.4, 0.9, 2.0]
+    assert [r.config.F for r in two] == [0.4, 0.9, 2.0]
+    for a, b in zip(one, two, strict=True):
+        assert np.array_equal(a.samples, b.samples)
+        assert a.exponent_per_period == b.exponent_per_period
+        assert a.classification.label == b.classification.label
+    summary, samples = write_sweep_csv("F", two, tmp_path / "sweep.csv")
+    assert len(summary.read_text().splitlines()) == 4
+    assert len(samples.read_text().splitlines()) == 1 + 3 * 25
+    png = plot_sweep("F", two, tmp_path / "sweep.png", chaos_threshold=0.05)
+    assert png.stat().st_size > 1000
+
+
+@pytest.mark.skipif(not BEAM_FMU.is_file(), reason=f"{BEAM_FMU} not built yet (scripts/build_fmus)")
+def test_sweep_on_given_scheduler() -> None:
+    """--scheduler ADDR: the cases run on an existing cluster, same results as locally."""
+    import logging
+
+    from dask.distributed import LocalCluster
+
+    from georod_tools.runner import CaseConfig, run_case
+    from georod_tools.sweep import run_sweep
+
+    base = CaseConfig(
+        fmu=str(BEAM_FMU),
+        elements=4,
+        dt_max=2e-5,
+        n_per_period=10,
+        transient_periods=5,
+        sample_periods=15,
+    )
+    with LocalCluster(
+        n_workers=1, threads_per_worker=1, dashboard_address=None, silence_logs=logging.WARNING
+    ) as cluster:
+        got = run_sweep(
+            base, "Omega", [3600.0, 3400.0], scheduler=cluster.scheduler_address, progress=False
+        )
+    assert [r.config.Omega for r in got] == [3400.0, 3600.0]
+    direct = run_case(base.with_value("Omega", 3400.0))
+    assert np.array_equal(got[0].samples, direct.samples)

@@ -1,0 +1,211 @@
+/*
+ * A minimal FMI 2.0 Co-Simulation host for running an FMU's shared library under valgrind
+ * (scripts/valgrind_fmu). No FMI headers needed: the few types are declared here.
+ *
+ *   valgrind_driver LIBRARY.so GUID RESOURCE_URI [STEPS] [STEP_SIZE]
+ *
+ * Cycle: instantiate, setupExperiment, set parameters, enter/exit initialization, STEPS doSteps
+ * reading every output, get/set FMU state (roll back and compare), serialize / deserialize,
+ * a few refused calls (error paths with the logger), terminate, freeInstance, dlclose.
+ * Exit status 0 when every call answered as expected, 2 otherwise.
+ */
+#include <dlfcn.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef void *fmi2Component;
+typedef void *fmi2ComponentEnvironment;
+typedef void *fmi2FMUstate;
+typedef unsigned int fmi2ValueReference;
+typedef double fmi2Real;
+typedef int fmi2Integer;
+typedef int fmi2Boolean;
+typedef char fmi2Byte;
+typedef const char *fmi2String;
+typedef enum { fmi2OK, fmi2Warning, fmi2Discard, fmi2Error, fmi2Fatal, fmi2Pending } fmi2Status;
+typedef enum { fmi2ModelExchange, fmi2CoSimulation } fmi2Type;
+typedef enum { fmi2DoStepStatus, fmi2PendingStatus, fmi2LastSuccessfulTime, fmi2Terminated } fmi2StatusKind;
+
+typedef struct {
+    void (*logger)(fmi2ComponentEnvironment, fmi2String, fmi2Status, fmi2String, fmi2String, ...);
+    void *(*allocateMemory)(size_t, size_t);
+    void (*freeMemory)(void *);
+    void (*stepFinished)(fmi2ComponentEnvironment, fmi2Status);
+    fmi2ComponentEnvironment componentEnvironment;
+} fmi2CallbackFunctions;
+
+/* value references of shared/spec/fmu.md (modelDescription/variables.toml) */
+enum { VR_F = 9, VR_OMEGA = 10, VR_F_CTRL = 20, VR_W_MID = 30, VR_V_MID = 31, VR_E_KIN = 32, VR_E_STRAIN = 33,
+       VR_NEWTON = 34 };
+
+static int messages = 0;
+
+static void logger(fmi2ComponentEnvironment env, fmi2String instance, fmi2Status status, fmi2String category,
+                   fmi2String message, ...) {
+    (void)env;
+    char buffer[2048];
+    va_list args;
+    va_start(args, message);
+    vsnprintf(buffer, sizeof buffer, message ? message : "(null)", args);
+    va_end(args);
+    messages++;
+    fprintf(stderr, "  [log %s status=%d %s] %s\n", instance ? instance : "?", (int)status, category ? category : "",
+            buffer);
+}
+
+static int failures = 0;
+
+#define EXPECT(call, want)                                                                                    \
+    do {                                                                                                      \
+        fmi2Status s_ = (call);                                                                               \
+        if (s_ != (want)) {                                                                                   \
+            fprintf(stderr, "FAIL %s:%d: %s returned %d, expected %d\n", __FILE__, __LINE__, #call, (int)s_, \
+                    (int)(want));                                                                             \
+            failures++;                                                                                       \
+        }                                                                                                     \
+    } while (0)
+
+#define LOAD(name)                                                                                            \
+    name##_t name = (name##_t)dlsym(lib, #name);                                                              \
+    if (!name) {                                                                                              \
+        fprintf(stderr, "missing symbol %s\n", #name);                                                        \
+        return 2;                                                                                             \
+    }
+
+typedef fmi2Component (*fmi2Instantiate_t)(fmi2String, fmi2Type, fmi2String, fmi2String,
+                                            const fmi2CallbackFunctions *, fmi2Boolean, fmi2Boolean);
+typedef void (*fmi2FreeInstance_t)(fmi2Component);
+typedef fmi2Status (*fmi2SetupExperiment_t)(fmi2Component, fmi2Boolean, fmi2Real, fmi2Real, fmi2Boolean, fmi2Real);
+typedef fmi2Status (*fmi2EnterInitializationMode_t)(fmi2Component);
+typedef fmi2Status (*fmi2ExitInitializationMode_t)(fmi2Component);
+typedef fmi2Status (*fmi2Terminate_t)(fmi2Component);
+typedef fmi2Status (*fmi2GetReal_t)(fmi2Component, const fmi2ValueReference *, size_t, fmi2Real *);
+typedef fmi2Status (*fmi2SetReal_t)(fmi2Component, const fmi2ValueReference *, size_t, const fmi2Real *);
+typedef fmi2Status (*fmi2GetInteger_t)(fmi2Component, const fmi2ValueReference *, size_t, fmi2Integer *);
+typedef fmi2Status (*fmi2DoStep_t)(fmi2Component, fmi2Real, fmi2Real, fmi2Boolean);
+typedef fmi2Status (*fmi2GetFMUstate_t)(fmi2Component, fmi2FMUstate *);
+typedef fmi2Status (*fmi2SetFMUstate_t)(fmi2Component, fmi2FMUstate);
+typedef fmi2Status (*fmi2FreeFMUstate_t)(fmi2Component, fmi2FMUstate *);
+typedef fmi2Status (*fmi2SerializedFMUstateSize_t)(fmi2Component, fmi2FMUstate, size_t *);
+typedef fmi2Status (*fmi2SerializeFMUstate_t)(fmi2Component, fmi2FMUstate, fmi2Byte *, size_t);
+typedef fmi2Status (*fmi2DeSerializeFMUstate_t)(fmi2Component, const fmi2Byte *, size_t, fmi2FMUstate *);
+typedef fmi2Status (*fmi2GetRealStatus_t)(fmi2Component, fmi2StatusKind, fmi2Real *);
+
+int main(int argc, char **argv) {
+    if (argc < 4) {
+        fprintf(stderr, "usage: %s LIBRARY.so GUID RESOURCE_URI [STEPS] [STEP_SIZE]\n", argv[0]);
+        return 2;
+    }
+    const char *path = argv[1], *guid = argv[2], *resources = argv[3];
+    int steps = argc > 4 ? atoi(argv[4]) : 100;
+    double h = argc > 5 ? atof(argv[5]) : 1e-5;
+
+    void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    if (!lib) {
+        fprintf(stderr, "dlopen: %s\n", dlerror());
+        return 2;
+    }
+    LOAD(fmi2Instantiate)
+    LOAD(fmi2FreeInstance)
+    LOAD(fmi2SetupExperiment)
+    LOAD(fmi2EnterInitializationMode)
+    LOAD(fmi2ExitInitializationMode)
+    LOAD(fmi2Terminate)
+    LOAD(fmi2GetReal)
+    LOAD(fmi2SetReal)
+    LOAD(fmi2GetInteger)
+    LOAD(fmi2DoStep)
+    LOAD(fmi2GetFMUstate)
+    LOAD(fmi2SetFMUstate)
+    LOAD(fmi2FreeFMUstate)
+    LOAD(fmi2SerializedFMUstateSize)
+    LOAD(fmi2SerializeFMUstate)
+    LOAD(fmi2DeSerializeFMUstate)
+    LOAD(fmi2GetRealStatus)
+
+    fmi2CallbackFunctions cb = {logger, calloc, free, NULL, NULL};
+    fmi2Component c = fmi2Instantiate("valgrind", fmi2CoSimulation, guid, resources, &cb, 0, 1);
+    if (!c) {
+        fprintf(stderr, "fmi2Instantiate returned NULL\n");
+        return 2;
+    }
+    /* a refused call before initialization (error path + logger) */
+    EXPECT(fmi2DoStep(c, 0.0, h, 1), fmi2Error);
+    EXPECT(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), fmi2OK);
+    const fmi2ValueReference vr_forcing[2] = {VR_F, VR_OMEGA};
+    const fmi2Real forcing[2] = {0.9, 3500.0};
+    EXPECT(fmi2SetReal(c, vr_forcing, 2, forcing), fmi2OK);
+    EXPECT(fmi2EnterInitializationMode(c), fmi2OK);
+    EXPECT(fmi2ExitInitializationMode(c), fmi2OK);
+
+    const fmi2ValueReference vr_out[4] = {VR_W_MID, VR_V_MID, VR_E_KIN, VR_E_STRAIN};
+    const fmi2ValueReference vr_newton = VR_NEWTON, vr_ctrl = VR_F_CTRL, vr_bad = 12345;
+    fmi2Real out[4], first[4], again[4], t_last = -1.0;
+    fmi2Integer newton = 0;
+    fmi2FMUstate state = NULL, restored = NULL;
+    int half = steps / 2;
+    for (int k = 0; k < steps; k++) {
+        if (k == half) EXPECT(fmi2GetFMUstate(c, &state), fmi2OK);
+        fmi2Real ctrl = 1e-3 * (k % 3);
+        EXPECT(fmi2SetReal(c, &vr_ctrl, 1, &ctrl), fmi2OK);
+        EXPECT(fmi2DoStep(c, k * h, h, 1), fmi2OK);
+        EXPECT(fmi2GetReal(c, vr_out, 4, out), fmi2OK);
+        EXPECT(fmi2GetInteger(c, &vr_newton, 1, &newton), fmi2OK);
+        if (!isfinite(out[0])) {
+            fprintf(stderr, "FAIL: w_mid not finite at step %d\n", k);
+            failures++;
+        }
+    }
+    memcpy(first, out, sizeof out);
+
+    /* roll back, re-step: identical */
+    EXPECT(fmi2SetFMUstate(c, state), fmi2OK);
+    for (int k = half; k < steps; k++) {
+        fmi2Real ctrl = 1e-3 * (k % 3);
+        EXPECT(fmi2SetReal(c, &vr_ctrl, 1, &ctrl), fmi2OK);
+        EXPECT(fmi2DoStep(c, k * h, h, 1), fmi2OK);
+    }
+    EXPECT(fmi2GetReal(c, vr_out, 4, again), fmi2OK);
+    if (memcmp(first, again, sizeof first) != 0) {
+        fprintf(stderr, "FAIL: re-stepping after fmi2SetFMUstate differs\n");
+        failures++;
+    }
+
+    /* serialize, deserialize, set */
+    size_t size = 0;
+    EXPECT(fmi2SerializedFMUstateSize(c, state, &size), fmi2OK);
+    fmi2Byte *bytes = malloc(size ? size : 1);
+    EXPECT(fmi2SerializeFMUstate(c, state, bytes, size), fmi2OK);
+    EXPECT(fmi2DeSerializeFMUstate(c, bytes, size, &restored), fmi2OK);
+    EXPECT(fmi2SetFMUstate(c, restored), fmi2OK);
+    /* deserialize into an existing state (re-use) and garbage (refused) */
+    EXPECT(fmi2DeSerializeFMUstate(c, bytes, size, &restored), fmi2OK);
+    EXPECT(fmi2DeSerializeFMUstate(c, "garbage", 7, &restored), fmi2Error);
+    free(bytes);
+    EXPECT(fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t_last), fmi2OK);
+
+    EXPECT(fmi2FreeFMUstate(c, &state), fmi2OK);
+    EXPECT(fmi2FreeFMUstate(c, &restored), fmi2OK);
+
+    /* refused calls: unknown value reference, NULL state, NaN input (the instance may be in the
+       error state afterwards, so terminate's answer is not checked) */
+    EXPECT(fmi2GetReal(c, &vr_bad, 1, out), fmi2Error);
+    EXPECT(fmi2SetFMUstate(c, NULL), fmi2Error);
+    fmi2Real nan_value = NAN;
+    EXPECT(fmi2SetReal(c, &vr_ctrl, 1, &nan_value), fmi2Error);
+    (void)fmi2Terminate(c);
+    fmi2FreeInstance(c);
+
+    /* a second instance that is freed without terminating nor initializing */
+    fmi2Component d = fmi2Instantiate("valgrind2", fmi2CoSimulation, guid, resources, &cb, 0, 0);
+    if (d) fmi2FreeInstance(d);
+    else failures++;
+
+    dlclose(lib);
+    printf("%s: %d steps of %g s, w_mid = %.17g, %d log messages, %d failures\n", path, steps, h, first[0],
+           messages, failures);
+    return failures ? 2 : 0;
+}
