@@ -36,6 +36,25 @@ pub struct Variable {
     #[serde(default)]
     pub max_exclusive: bool,
     pub scenes: Option<Vec<String>>,
+    /// For `type = "Enumeration"`: the `[[type]]` that lists its items.
+    pub declared_type: Option<String>,
+}
+
+/// An enumeration type (`[[type]]` in variables.toml).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnumType {
+    pub name: String,
+    pub description: String,
+    pub items: Vec<EnumItem>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EnumItem {
+    pub name: String,
+    pub value: i64,
+    pub description: String,
 }
 
 #[derive(Deserialize)]
@@ -46,11 +65,14 @@ struct ScenesFile {
 #[derive(Deserialize)]
 struct VariablesFile {
     variable: Vec<Variable>,
+    #[serde(default, rename = "type")]
+    types: Vec<EnumType>,
 }
 
 pub struct Spec {
     pub scenes: Vec<Scene>,
     pub variables: Vec<Variable>,
+    pub types: Vec<EnumType>,
 }
 
 fn number(v: &toml::Value, what: &str) -> Result<f64, String> {
@@ -102,6 +124,7 @@ impl Spec {
         let spec = Spec {
             scenes: scenes.scene,
             variables: vars.variable,
+            types: vars.types,
         };
         spec.check()?;
         Ok(spec)
@@ -149,8 +172,24 @@ impl Spec {
             if !names.insert(v.name.as_str()) {
                 return Err(format!("{ctx}: name used twice"));
             }
-            if !["Real", "Integer"].contains(&v.var_type.as_str()) {
-                return Err(format!("{ctx}: type must be Real or Integer"));
+            if !["Real", "Integer", "Enumeration"].contains(&v.var_type.as_str()) {
+                return Err(format!("{ctx}: type must be Real, Integer or Enumeration"));
+            }
+            let enumeration = v.var_type == "Enumeration";
+            match &v.declared_type {
+                Some(t) if enumeration => {
+                    let ty = self.types.iter().find(|ty| &ty.name == t);
+                    let Some(ty) = ty else {
+                        return Err(format!("{ctx}: no [[type]] named {t}"));
+                    };
+                    let values: Vec<f64> = ty.items.iter().map(|i| i.value as f64).collect();
+                    let start = v.start.as_ref().map(|x| number(x, &ctx)).transpose()?;
+                    if start.is_some_and(|x| !values.contains(&x)) {
+                        return Err(format!("{ctx}: start is not an item of {t}"));
+                    }
+                }
+                None if !enumeration => {}
+                _ => return Err(format!("{ctx}: declared_type goes with type = Enumeration")),
             }
             let pairs = [
                 ("parameter", "fixed"),

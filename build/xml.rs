@@ -159,6 +159,41 @@ pub fn model_description(spec: &Spec, scene: &Scene) -> Result<ModelDescription,
         let _ = writeln!(w, "  </UnitDefinitions>");
     }
 
+    // Enumeration types used by this scene.
+    let used: Vec<&str> = vars
+        .iter()
+        .filter_map(|v| v.declared_type.as_deref())
+        .collect();
+    let types: Vec<_> = spec
+        .types
+        .iter()
+        .filter(|t| used.contains(&t.name.as_str()))
+        .collect();
+    if !types.is_empty() {
+        let _ = writeln!(w, "  <TypeDefinitions>");
+        for t in types {
+            let _ = writeln!(
+                w,
+                r#"    <SimpleType name="{}" description="{}">"#,
+                escape(&t.name),
+                escape(&t.description)
+            );
+            let _ = writeln!(w, "      <Enumeration>");
+            for item in &t.items {
+                let _ = writeln!(
+                    w,
+                    r#"        <Item name="{}" value="{}" description="{}"/>"#,
+                    escape(&item.name),
+                    item.value,
+                    escape(&item.description)
+                );
+            }
+            let _ = writeln!(w, "      </Enumeration>");
+            let _ = writeln!(w, "    </SimpleType>");
+        }
+        let _ = writeln!(w, "  </TypeDefinitions>");
+    }
+
     let _ = writeln!(w, "  <LogCategories>");
     for (name, desc) in LOG_CATEGORIES {
         let _ = writeln!(
@@ -210,6 +245,9 @@ pub fn model_description(spec: &Spec, scene: &Scene) -> Result<ModelDescription,
                 integer(x, &ctx)
             }
         };
+        if let Some(t) = &v.declared_type {
+            let _ = write!(attrs, r#" declaredType="{}""#, escape(t));
+        }
         if let Some(u) = v.unit_for(&scene.name) {
             let _ = write!(attrs, r#" unit="{}""#, escape(u));
         }

@@ -4,6 +4,7 @@
 //! (see [`crate::variables`]), so a scene file, the FMU and the docs all use the same names:
 //! `E`, `nu`, `rho`, `d`, `b`, `h`, `L`, `elements`, `dt_max`, `F`, `Omega`, and per scene
 //! `pre_shortening`, `well` (BuckledBeam) or `H`, `P0` (arches).
+use crate::integrator::Scheme;
 use crate::variables::{self, Causality, VarType, Variable};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -97,6 +98,8 @@ pub struct SceneParams {
     pub rise: f64,
     /// `P0`
     pub preload: f64,
+    /// `integrator`: 1 = midpoint rule, 2 = energy-momentum.
+    pub integrator: Scheme,
 }
 
 impl SceneParams {
@@ -124,6 +127,7 @@ impl SceneParams {
             well: start("well") as i32,
             rise: start("H"),
             preload: start("P0"),
+            integrator: scheme_from_code(start("integrator")),
         }
     }
 
@@ -175,6 +179,7 @@ impl SceneParams {
             "well" => self.well = value as i32,
             "H" => self.rise = value,
             "P0" => self.preload = value,
+            "integrator" => self.integrator = scheme_from_code(value),
             _ => return Err(refuse(name, "no such parameter")),
         }
         Ok(())
@@ -198,6 +203,10 @@ impl SceneParams {
             "well" => self.well as f64,
             "H" => self.rise,
             "P0" => self.preload,
+            "integrator" => match self.integrator {
+                Scheme::Midpoint => 1.0,
+                Scheme::EnergyMomentum => 2.0,
+            },
             _ => return None,
         })
     }
@@ -246,11 +255,20 @@ impl SceneParams {
     }
 }
 
+/// The scheme of the `integrator` enumeration (1 midpoint, 2 energy-momentum; range-checked).
+fn scheme_from_code(code: f64) -> Scheme {
+    if code == 2.0 {
+        Scheme::EnergyMomentum
+    } else {
+        Scheme::Midpoint
+    }
+}
+
 fn check_range(var: &Variable, value: f64) -> Result<(), ParamError> {
     if !value.is_finite() {
         return Err(refuse(var.name, format!("{value} is not a finite number")));
     }
-    if var.var_type == VarType::Integer && value.fract() != 0.0 {
+    if var.var_type != VarType::Real && value.fract() != 0.0 {
         return Err(refuse(var.name, format!("{value} is not an integer")));
     }
     if !var.admits(value) {

@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use std::fmt;
 
 /// Version of [`Snapshot`]'s layout; bump it when the fields change.
-pub const SNAPSHOT_VERSION: u32 = 1;
+pub const SNAPSHOT_VERSION: u32 = 2;
 
 /// How often a failing sub-step is halved before a communication step is given up.
 pub const MAX_STEP_CUTS: u32 = 5;
@@ -63,6 +63,40 @@ pub struct Outputs {
     pub v_mid: f64,
     pub kinetic_energy: f64,
     pub strain_energy: f64,
+    pub energy: EnergyLedger,
+    /// `E_kin + E_strain - E(0) - W_ext - W_ctrl + E_damped`.
+    pub energy_error: f64,
+}
+
+impl Outputs {
+    /// The output with this FMU variable name.
+    pub fn by_name(&self, name: &str) -> Option<f64> {
+        Some(match name {
+            "w_mid" => self.w_mid,
+            "v_mid" => self.v_mid,
+            "E_kin" => self.kinetic_energy,
+            "E_strain" => self.strain_energy,
+            "W_ext" => self.energy.external_work,
+            "W_ctrl" => self.energy.control_work,
+            "E_damped" => self.energy.dissipated,
+            "energy_error" => self.energy_error,
+            _ => return None,
+        })
+    }
+}
+
+/// Energy bookkeeping since `t = 0`: with `du` a sub-step's increment, the work of the loads
+/// held at the sub-step's midpoint is `du . f`, the dissipated energy `du . C du / dt`. The
+/// discrete-gradient scheme balances these exactly; the midpoint rule up to `O(dt^2)`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EnergyLedger {
+    /// Work of the excitation `F cos(Omega t)` and of the preload `P0`.
+    pub external_work: f64,
+    /// Work of the control force `f_ctrl`.
+    pub control_work: f64,
+    pub dissipated: f64,
+    /// `E_kin + E_strain` at `t = 0`.
+    pub initial_energy: f64,
 }
 
 /// What one [`Simulation::advance`] did.
@@ -72,6 +106,48 @@ pub struct AdvanceReport {
     pub newton_iterations: u32,
     /// How many times the sub-step was halved after a Newton failure.
     pub cuts: u32,
+}
+
+/// Simulation time as a step counter (model.md: `t_n = n dt`, not a running sum): while
+/// communication steps keep the same sub-step `step`, sub-step `n` starts at
+/// `origin + n * step`; a different sub-step size restarts the count at the current time.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Clock {
+    pub origin: f64,
+    pub step: f64,
+    pub count: u64,
+}
+
+impl Clock {
+    fn start() -> Clock {
+        Clock {
+            origin: 0.0,
+            step: 0.0,
+            count: 0,
+        }
+    }
+
+    pub fn now(&self) -> f64 {
+        self.origin + self.count as f64 * self.step
+    }
+
+    /// The clock that counts sub-steps of `step` from now on.
+    fn with_step(self, step: f64) -> Clock {
+        if step == self.step {
+            self
+        } else {
+            Clock {
+                origin: self.now(),
+                step,
+                count: 0,
+            }
+        }
+    }
+
+    /// Start time of sub-step `k` from now.
+    fn at(&self, k: u64) -> f64 {
+        self.origin + (self.count + k) as f64 * self.step
+    }
 }
 
 /// Everything needed to continue a simulation exactly: self-contained, versioned.
@@ -86,6 +162,8 @@ pub struct Snapshot {
     pub forcing_amplitude: f64,
     pub forcing_frequency: f64,
     pub last_newton_iterations: u32,
+    pub energy: EnergyLedger,
+    pub clock: Clock,
 }
 
 /// The rod of a scene with its supports, and where its excitation acts.
@@ -124,11 +202,18 @@ pub fn build_rod(p: &SceneParams) -> (Rod, ExcitationKind) {
     }
 }
 
-/// Axial strain at the buckling load of the pinned-pinned straight rod: the Euler load with the
-/// shear correction of a shear-deformable rod, `P = P_E / (1 + P_E / GA)`, over `EA`.
+/// Axial strain at the buckling load of the pinned-pinned straight rod of this model (shear and
+/// stretch included): the root of `P^2 (1 - GA/EA) + GA P - GA EI (pi/L)^2 = 0`, over `EA`.
 fn critical_strain(p: &SceneParams, rod: &Rod) -> f64 {
-    let euler = std::f64::consts::PI.powi(2) * rod.section.ei / (p.span * p.span);
-    euler / (1.0 + euler / rod.section.ga) / rod.section.ea
+    let (ea, ga, ei) = (rod.section.ea, rod.section.ga, rod.section.ei);
+    let k2 = (std::f64::consts::PI / p.span).powi(2);
+    let a = 1.0 - ga / ea;
+    let force = if a.abs() < 1e-12 {
+        ei * k2
+    } else {
+        (-ga + (ga * ga + 4.0 * a * ga * ei * k2).sqrt()) / (2.0 * a)
+    };
+    force / ea
 }
 
 /// Newton's starting point for the buckled beam: the first buckling mode `A sin(pi s / L)` in the
@@ -221,10 +306,15 @@ pub struct Simulation {
     state: DynamicState,
     /// Scratch state of a communication step in progress (the state is replaced only on success).
     trial: DynamicState,
-    time: f64,
+    clock: Clock,
     last_newton_iterations: u32,
     /// `(F, Omega)` at construction, restored by [`Simulation::reset`].
     initial_forcing: (f64, f64),
+    energy: EnergyLedger,
+    /// The ledger of a communication step in progress.
+    trial_energy: EnergyLedger,
+    /// `f_ctrl` held over the communication step in progress.
+    f_ctrl: f64,
 }
 
 impl Simulation {
@@ -236,14 +326,23 @@ impl Simulation {
         loads.amplitude = params.forcing_amplitude;
         loads.frequency = params.forcing_frequency;
         let initial = DynamicState::at_rest(initial_displacements(&params, &rod)?);
+        let mut integrator = Midpoint::new(&rod);
+        integrator.scheme = params.integrator;
+        let energy = EnergyLedger {
+            initial_energy: rod.strain_energy(&initial.u),
+            ..EnergyLedger::default()
+        };
         Ok(Simulation {
-            integrator: Midpoint::new(&rod),
+            integrator,
+            energy,
+            trial_energy: energy,
+            f_ctrl: 0.0,
             state: initial.clone(),
             trial: initial.clone(),
             initial,
             loads,
             rod,
-            time: 0.0,
+            clock: Clock::start(),
             last_newton_iterations: 0,
             initial_forcing: (params.forcing_amplitude, params.forcing_frequency),
             params,
@@ -264,7 +363,7 @@ impl Simulation {
 
     /// Time since the start of the simulation.
     pub fn time(&self) -> f64 {
-        self.time
+        self.clock.now()
     }
 
     /// Changes the tunable excitation `F cos(Omega t)`.
@@ -304,14 +403,17 @@ impl Simulation {
             SceneKind::PinnedArch | SceneKind::ClampedArch => self.params.preload,
         };
         self.loads.point_force = preload + f_ctrl;
-        let t0 = self.time;
+        self.f_ctrl = f_ctrl;
+        let t0 = self.time();
         let mut substeps = self.substeps_for(h);
         let mut last_failure = None;
         for cuts in 0..=MAX_STEP_CUTS {
-            match self.try_substeps(t0, h, substeps) {
+            match self.try_substeps(h, substeps) {
                 Ok(newton_iterations) => {
                     std::mem::swap(&mut self.state, &mut self.trial);
-                    self.time = t0 + h;
+                    self.energy = self.trial_energy;
+                    self.clock = self.clock.with_step(h / substeps as f64);
+                    self.clock.count += substeps as u64;
                     self.last_newton_iterations = newton_iterations;
                     return Ok(AdvanceReport {
                         substeps,
@@ -330,27 +432,52 @@ impl Simulation {
         })
     }
 
-    fn try_substeps(&mut self, t0: f64, h: f64, substeps: usize) -> Result<u32, NewtonFailure> {
+    fn try_substeps(&mut self, h: f64, substeps: usize) -> Result<u32, NewtonFailure> {
         self.trial.copy_from(&self.state);
+        self.trial_energy = self.energy;
         let dt = h / substeps as f64;
+        let clock = self.clock.with_step(dt);
         let mut iterations = 0;
         for k in 0..substeps {
-            let t_k = t0 + k as f64 * dt;
+            let t_k = clock.at(k as u64);
             let stats = self
                 .integrator
                 .step(&self.rod, &self.loads, &mut self.trial, t_k, dt)?;
             iterations += stats.iterations;
+            self.book_energy(t_k + 0.5 * dt, dt);
         }
         Ok(iterations)
     }
 
+    /// Adds the work and dissipation of the sub-step just taken to the trial ledger.
+    fn book_energy(&mut self, t_mid: f64, dt: f64) {
+        let du = self.integrator.last_increment();
+        let dot = |f: &[f64]| du.iter().zip(f).map(|(a, b)| a * b).sum::<f64>();
+        let on_excitation = dot(&self.loads.excitation_shape);
+        let on_point = dot(&self.loads.point_shape);
+        let ledger = &mut self.trial_energy;
+        ledger.external_work += self.loads.excitation(t_mid) * on_excitation
+            + (self.loads.point_force - self.f_ctrl) * on_point;
+        ledger.control_work += self.f_ctrl * on_point;
+        ledger.dissipated += self.rod.dissipation_rate(du) / dt;
+    }
+
     pub fn outputs(&self) -> Outputs {
         let mid = self.rod.midspan();
+        let kinetic_energy = self.rod.kinetic_energy(&self.state.v);
+        let strain_energy = self.rod.strain_energy(&self.state.u);
+        let e = &self.energy;
         Outputs {
             w_mid: self.rod.interpolate(&self.state.u, mid, U2),
             v_mid: self.rod.interpolate(&self.state.v, mid, U2),
-            kinetic_energy: self.rod.kinetic_energy(&self.state.v),
-            strain_energy: self.rod.strain_energy(&self.state.u),
+            kinetic_energy,
+            strain_energy,
+            energy: *e,
+            energy_error: kinetic_energy + strain_energy
+                - e.initial_energy
+                - e.external_work
+                - e.control_work
+                + e.dissipated,
         }
     }
 
@@ -364,12 +491,14 @@ impl Simulation {
             version: SNAPSHOT_VERSION,
             kind: self.params.kind,
             elements: self.params.elements,
-            time: self.time,
+            time: self.time(),
             displacements: self.state.u.clone(),
             velocities: self.state.v.clone(),
             forcing_amplitude: self.params.forcing_amplitude,
             forcing_frequency: self.params.forcing_frequency,
             last_newton_iterations: self.last_newton_iterations,
+            energy: self.energy,
+            clock: self.clock,
         }
     }
 
@@ -409,8 +538,9 @@ impl Simulation {
         self.set_forcing(s.forcing_amplitude, s.forcing_frequency)?;
         self.state.u.copy_from_slice(&s.displacements);
         self.state.v.copy_from_slice(&s.velocities);
-        self.time = s.time;
+        self.clock = s.clock;
         self.last_newton_iterations = s.last_newton_iterations;
+        self.energy = s.energy;
         Ok(())
     }
 
@@ -420,7 +550,11 @@ impl Simulation {
         self.set_forcing(f, omega)
             .expect("the initial forcing was valid");
         self.state.copy_from(&self.initial);
-        self.time = 0.0;
+        self.energy = EnergyLedger {
+            initial_energy: self.rod.strain_energy(&self.initial.u),
+            ..EnergyLedger::default()
+        };
+        self.clock = Clock::start();
         self.last_newton_iterations = 0;
     }
 }

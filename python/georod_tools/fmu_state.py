@@ -8,14 +8,16 @@ documented byte layout (src/fmi/fmu_state.rs): decode the vectors, patch them, a
 Layout (bincode 1.3 default options: little endian, fixed-width integers, u64 length prefixes,
 u8 Option tags, u32 enum variant indices, f64 as 8 bytes)::
 
-    Header { magic: [u8; 8] = b"GEOROD\\0S", format_version: u32 (= 1), scene: String,
+    Header { magic: [u8; 8] = b"GEOROD\\0S", format_version: u32 (= 2), scene: String,
              elements: u64 }
     Body   { fmi_state: enum (u32), experiment: { tolerance: Option<f64>, start_time: f64,
              stop_time: Option<f64> }, params: Vec<(String, f64)>, f_ctrl: f64,
              snapshot: Option<Snapshot> }
-    Snapshot { version: u32 (= 1), kind: enum (u32), elements: u64, time: f64,
+    Snapshot { version: u32 (= 2), kind: enum (u32), elements: u64, time: f64,
                displacements: Vec<f64>, velocities: Vec<f64>, forcing_amplitude: f64,
-               forcing_frequency: f64, last_newton_iterations: u32 }
+               forcing_frequency: f64, last_newton_iterations: u32,
+               energy: { external_work, control_work, dissipated, initial_energy: f64 },
+               clock: { origin: f64, step: f64, count: u64 } }
 
 The vectors hold 3 entries per node (u1, u2, w), prescribed ones included (src/model/rod.rs).
 Patching replaces values in place, so the layout and length never change.
@@ -29,8 +31,8 @@ from dataclasses import dataclass
 import numpy as np
 
 MAGIC = b"GEOROD\x00S"
-FORMAT_VERSION = 1
-SNAPSHOT_VERSION = 1
+FORMAT_VERSION = 2
+SNAPSHOT_VERSION = 2
 DOFS_PER_NODE = 3
 U1, U2, ROTATION = 0, 1, 2
 
@@ -149,6 +151,11 @@ def decode_state(blob: bytes) -> DecodedState:
     amplitude = r.f64()
     frequency = r.f64()
     r.u32()  # last_newton_iterations
+    for _ in range(4):  # energy ledger: external_work, control_work, dissipated, initial_energy
+        r.f64()
+    r.f64()  # clock.origin
+    r.f64()  # clock.step
+    r.u64()  # clock.count
     if r.pos != len(r.data):
         raise StateFormatError(f"{len(r.data) - r.pos} unexpected trailing bytes")
     dofs = DOFS_PER_NODE * (elements + 1)
@@ -213,4 +220,6 @@ def build_state(
     out += b"\x01" + struct.pack("<IIQd", SNAPSHOT_VERSION, 0, elements, time)
     out += struct.pack("<Q", u.size) + u.tobytes() + struct.pack("<Q", v.size) + v.tobytes()
     out += struct.pack("<ddI", forcing[0], forcing[1], 0)
+    out += struct.pack("<dddd", 0.0, 0.0, 0.0, 0.0)  # energy ledger
+    out += struct.pack("<ddQ", time, 0.0, 0)  # clock: origin = time, no sub-steps counted
     return bytes(out)

@@ -59,7 +59,7 @@ def test_encode_patches_in_place() -> None:
         (lambda b: b"X" + b[1:], "magic"),
         (lambda b: b[:40], "truncated"),
         (lambda b: b + b"\x00", "trailing"),
-        (lambda b: b[:8] + b"\x02" + b[9:], "format"),
+        (lambda b: b[:8] + b"\x63" + b[9:], "format"),  # format version 99
     ],
 )
 def test_bad_bytes_are_refused(mangle, match: str) -> None:  # noqa: ANN001

@@ -89,7 +89,7 @@ fn causality_text(v: &Variable) -> &'static str {
 /// A start value as the host sees it (integers without a decimal point).
 fn value_text(v: &Variable, x: f64) -> String {
     match v.var_type {
-        VarType::Integer => format!("{}", x as i64),
+        VarType::Integer | VarType::Enumeration => format!("{}", x as i64),
         VarType::Real => format!("{x}"),
     }
 }

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 /// First bytes of every serialized state.
 pub const SERIAL_MAGIC: [u8; 8] = *b"GEOROD\x00S";
 /// Layout version of [`Body`]; bump it when the fields change.
-pub const SERIAL_VERSION: u32 = 1;
+pub const SERIAL_VERSION: u32 = 2;
 /// Marks a live `FmuState` allocation (detects garbage and freed pointers where cheap).
 const STATE_MAGIC: u64 = 0x4745_4f52_4f44_5354; // "GEORODST"
 const FREED_MAGIC: u64 = 0xdead_dead_dead_dead;

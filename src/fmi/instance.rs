@@ -156,10 +156,11 @@ fn describe(var: &Variable) -> String {
     format!("`{}` (vr {})", var.name, var.vr)
 }
 
+/// The FMI function family that reads and writes a type (enumerations use the Integer ones).
 fn type_name(t: VarType) -> &'static str {
     match t {
         VarType::Real => "Real",
-        VarType::Integer => "Integer",
+        VarType::Integer | VarType::Enumeration => "Integer",
     }
 }
 
@@ -442,7 +443,7 @@ impl Instance {
                 self.kind
             ));
         }
-        if var.var_type != ty {
+        if type_name(var.var_type) != type_name(ty) {
             let actual = type_name(var.var_type);
             return error(format!(
                 "{} is an {actual} variable, not {} (use {}{actual})",
@@ -486,6 +487,7 @@ impl Instance {
         let needs_outputs = vars
             .iter()
             .any(|v| v.causality == Causality::Output && v.name != "newton_iterations");
+        // Before initialization nothing has been simulated: no work done, no error yet.
         let outputs = if needs_outputs {
             Some(self.outputs()?)
         } else {
@@ -499,17 +501,13 @@ impl Instance {
                     .get(var.name)
                     .expect("every parameter has a value"),
                 Causality::Input => self.f_ctrl,
-                Causality::Output => {
-                    let out = outputs.as_ref();
-                    match var.name {
-                        "w_mid" => out.expect("computed").w_mid,
-                        "v_mid" => out.expect("computed").v_mid,
-                        "E_kin" => out.expect("computed").kinetic_energy,
-                        "E_strain" => out.expect("computed").strain_energy,
-                        "newton_iterations" => self.newton_iterations(),
-                        other => unreachable!("output `{other}` has no value in the FMI layer"),
-                    }
-                }
+                Causality::Output => match var.name {
+                    "newton_iterations" => self.newton_iterations(),
+                    name => outputs
+                        .as_ref()
+                        .and_then(|o| o.by_name(name))
+                        .unwrap_or_else(|| unreachable!("output `{name}` has no value")),
+                },
             })
             .collect();
         self.log.trace(|| format!("{func}({vrs:?}) -> {values:?}"));

@@ -158,8 +158,8 @@ impl Element {
         let inv_l = 1.0 / self.length;
         let mut b_bar = Matrix2x6::zeros();
         let mut b_sum = Vector2::zeros();
-        for g in 0..2 {
-            let (na, nb) = shape_functions(GAUSS_POINTS[g]);
+        for (g, &xi) in GAUSS_POINTS.iter().enumerate() {
+            let (na, nb) = shape_functions(xi);
             let (sin_a, cos_a) = self.alpha[g].sin_cos();
             let stretch = |u: &Vector6| {
                 let x1 = cos_a + (u[3] - u[0]) * inv_l;

@@ -129,8 +129,11 @@ impl BlockTridiagonal {
             }
             let pivot = self.diag[i];
             let det = pivot.determinant();
-            let scale = pivot.abs().max();
-            if !det.is_finite() || det.abs() <= 1e-14 * scale * scale * scale {
+            // Relative to the product of the column norms (Hadamard's bound), which is blind to
+            // how differently the dofs are scaled (a slender rod's rotation columns are orders of
+            // magnitude smaller than its translation columns).
+            let bound: f64 = pivot.column_iter().map(|c| c.norm()).product();
+            if !det.is_finite() || det.abs() <= 1e-14 * bound {
                 return Err(SingularMatrix { block: i });
             }
             if det < 0.0 {

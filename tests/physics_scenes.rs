@@ -1,0 +1,301 @@
+//! The scenes' initial states (symmetry and axial force of the buckled beam, equilibrium of the
+//! preloaded arches) and the contract of `Simulation::advance` (a failed step changes nothing; a
+//! communication step cut into sub-steps equals the same sub-steps taken one by one).
+//!
+//! Run: `cargo test --release --test physics_scenes -- --nocapture`
+mod common;
+
+use common::{buckling_threshold, critical_axial_force, max_abs, max_abs_diff, pinned_rod, Table};
+use georod::model::element::Vector6;
+use georod::model::rod::{ROTATION, U1, U2};
+use georod::model::Rod;
+use georod::scene::{SceneKind, SceneParams};
+use georod::simulation::{Simulation, Snapshot};
+use std::f64::consts::PI;
+
+fn element_dofs(u: &[f64], e: usize) -> Vector6 {
+    Vector6::from_column_slice(&u[3 * e..3 * e + 6])
+}
+
+/// Largest deviation from the mirror symmetry about `s = L/2` of the buckled beam: `u2`
+/// symmetric, `u1 + Delta s / L` antisymmetric, `w` antisymmetric.
+fn symmetry_defect(rod: &Rod, u: &[f64], shortening: f64, span: f64) -> (f64, f64, f64) {
+    let n = rod.last_node();
+    let (mut d1, mut d2, mut dw) = (0.0f64, 0.0f64, 0.0f64);
+    for i in 0..=n {
+        let j = n - i;
+        let a1 = u[3 * i + U1] + shortening * rod.node_s[i] / span;
+        let b1 = u[3 * j + U1] + shortening * rod.node_s[j] / span;
+        d1 = d1.max((a1 + b1).abs());
+        d2 = d2.max((u[3 * i + U2] - u[3 * j + U2]).abs());
+        dw = dw.max((u[3 * i + ROTATION] + u[3 * j + ROTATION]).abs());
+    }
+    (d1, d2, dw)
+}
+
+#[test]
+fn buckled_beam_initial_state() {
+    let mut t = Table::new(
+        "BuckledBeam initial static state (defaults: L=10, b=h=1, Delta=pre_shortening)",
+    );
+    t.row(format_args!(
+        "{:>5} {:>5} {:>11} {:>10} {:>10} {:>10} {:>11} {:>10} {:>10} {:>9}",
+        "elem", "well", "w_mid", "sym u1", "sym u2", "sym w", "H=-N1", "|N2|", "max S1", "P_cr^h"
+    ));
+    let euler = PI * PI * common::section(1.0, 1.0).ei / 100.0;
+    let p_cr = critical_axial_force(&common::section(1.0, 1.0), 10.0);
+    for elements in [10.0, 40.0] {
+        let mut w_mids = Vec::new();
+        let mut states = Vec::new();
+        for well in [1.0, -1.0] {
+            let params = SceneParams::with(
+                SceneKind::BuckledBeam,
+                [("well", well), ("elements", elements)],
+            )
+            .unwrap();
+            let (shortening, span) = (params.pre_shortening, params.span);
+            let sim = Simulation::new(params).expect("buckled beam");
+            let rod = sim.rod();
+            let u = &sim.state().u;
+            let (d1, d2, dw) = symmetry_defect(rod, u, shortening, span);
+            // Element forces in the global frame: the translational part of each element's
+            // internal force at its end node b, N_e = mean over the Gauss points of
+            // S1 t + S2 n. With no load between the ends, N_e is the same in every element.
+            let mut n_e = Vec::new();
+            let mut s1 = Vec::new();
+            for (e, el) in rod.elements.iter().enumerate() {
+                let ue = element_dofs(u, e);
+                let f = el.internal_force(&rod.section, &ue);
+                n_e.push((f[3], f[4]));
+                s1.push(el.stress_resultants(&rod.section, &ue)[0]);
+            }
+            let thrust = -n_e[0].0;
+            let spread = n_e
+                .iter()
+                .map(|&(x, y)| ((x + thrust).abs()).max(y.abs()))
+                .fold(0.0, f64::max);
+            let max_s1 = s1.iter().fold(f64::NEG_INFINITY, |m, &x| m.max(x));
+            let min_s1 = s1.iter().fold(f64::INFINITY, |m, &x| m.min(x));
+            // The discrete buckling load of the same mesh (the bisection of physics_buckling).
+            let rod_lin = pinned_rod(span, elements as usize);
+            let delta_h = buckling_threshold(&rod_lin, 0.2);
+            let p_h = delta_h / span * rod.section.ea;
+            let w_mid = sim.outputs().w_mid;
+            t.row(format_args!(
+                "{elements:>5} {well:>5} {w_mid:>11.7} {d1:>10.2e} {d2:>10.2e} {dw:>10.2e} {thrust:>11.5} {spread:>10.2e} {max_s1:>10.4} {p_h:>9.4}",
+            ));
+            // Tolerances: the discrete problem is mirror-symmetric and Newton keeps the symmetry
+            // of its (symmetric) starting point up to round-off: 1e-10 (|u| ~ 0.3).
+            assert!(
+                d1 < 1e-10 && d2 < 1e-10 && dw < 1e-10,
+                "asymmetric: {d1:e} {d2:e} {dw:e}"
+            );
+            assert!(w_mid * well > 0.1, "w_mid = {w_mid} not in well {well}");
+            // Nodal equilibrium: N_e equal in all elements, vertical part zero, to the
+            // Newton residual (corrections 1e-10 of the motion times stiffness EA/l ~ 1e5): 1e-6.
+            assert!(spread < 1e-6 * thrust, "element forces differ: {spread:e}");
+            // Compression everywhere; the thrust exceeds the buckling load of the same mesh
+            // (post-buckling stiffening of the pinned elastica, H / P_cr ~ 1 + theta0^2 / 8).
+            assert!(max_s1 < 0.0, "tension in a buckled element");
+            assert!((-min_s1 - thrust).abs() < 1e-3 * thrust);
+            assert!(
+                thrust > p_h,
+                "thrust {thrust} below the discrete buckling load {p_h}"
+            );
+            w_mids.push(w_mid);
+            states.push(u.clone());
+        }
+        // The two wells are mirror images (u2, w -> -u2, -w; u1 unchanged).
+        let (up, down) = (&states[0], &states[1]);
+        let mut mirror = 0.0f64;
+        for i in 0..up.len() {
+            let sign = if i % 3 == U1 { 1.0 } else { -1.0 };
+            mirror = mirror.max((up[i] - sign * down[i]).abs());
+        }
+        t.row(format_args!(
+            "  {elements} elements: w_mid(+1) + w_mid(-1) = {:.2e}, mirror defect of the states {mirror:.2e}",
+            w_mids[0] + w_mids[1]
+        ));
+        assert!((w_mids[0] + w_mids[1]).abs() < 1e-10);
+        assert!(mirror < 1e-10);
+    }
+    t.row(format_args!(
+        "  Euler load pi^2 EI/L^2 = {euler:.4}; continuum critical force with shear and stretch \
+         P_cr = {p_cr:.4}. The thrust exceeds the Euler load on 10 elements only because the \
+         10-element buckling load is 1.3% stiff; on 40 elements it lies between P_cr and P_E."
+    ));
+}
+
+#[test]
+fn preloaded_arches_start_in_equilibrium() {
+    let mut t = Table::new("arches with crown preload P0: initial state residual and rest");
+    t.row(format_args!(
+        "{:<12} {:>6} {:>12} {:>13} {:>14} {:>14}",
+        "scene", "P0", "w_mid", "|r|_inf/P0", "|du| 1 step", "|v| 1 step"
+    ));
+    for (kind, preloads) in [
+        (SceneKind::PinnedArch, [20.0, -20.0]),
+        (SceneKind::ClampedArch, [20.0, -20.0]),
+    ] {
+        for p0 in preloads {
+            let params = SceneParams::with(kind, [("P0", p0)]).unwrap();
+            let mut sim = Simulation::new(params).expect("arch");
+            let rod = sim.rod().clone();
+            let u = sim.state().u.clone();
+            let mut r = vec![0.0; rod.dofs()];
+            rod.internal_force(&u, &mut r);
+            let mut f_ext = vec![0.0; rod.dofs()];
+            rod.add_point_transverse_load(&mut f_ext, rod.midspan(), p0);
+            for ((ri, fi), &fixed) in r.iter_mut().zip(&f_ext).zip(&rod.fixed) {
+                *ri = if fixed { 0.0 } else { *ri - fi };
+            }
+            let residual = max_abs(&r) / p0.abs();
+            let w_mid = sim.outputs().w_mid;
+            // Released with F = 0 (default) and f_ctrl = 0, the preload P0 keeps acting: it
+            // must stay at rest.
+            sim.advance(1e-4, 0.0).expect("advance");
+            let moved = max_abs_diff(&sim.state().u, &u);
+            let speed = max_abs(&sim.state().v);
+            t.row(format_args!(
+                "{:<12} {p0:>6} {w_mid:>12.6} {residual:>13.3e} {moved:>14.3e} {speed:>14.3e}",
+                kind.name()
+            ));
+            // Tolerances: the static Newton stops with corrections below 1e-10 of the motion, so
+            // the residual is ~K * (last correction)^2-level: 1e-8 of the load. At rest it moves
+            // by (residual / stiffness) ~ 1e-10 at most.
+            assert!(residual < 1e-8, "{kind}: residual {residual:e}");
+            assert!(
+                w_mid * p0 < 0.0,
+                "{kind}: crown does not move with the load"
+            );
+            assert!(
+                moved < 1e-10 && speed < 1e-5,
+                "{kind}: not at rest ({moved:e}, {speed:e})"
+            );
+        }
+    }
+}
+
+/// Bit patterns of everything in a snapshot (f64 equality would accept -0.0 == 0.0).
+fn bits(s: &Snapshot) -> Vec<u64> {
+    let mut b: Vec<u64> = s
+        .displacements
+        .iter()
+        .chain(&s.velocities)
+        .map(|x| x.to_bits())
+        .collect();
+    b.extend([
+        s.time.to_bits(),
+        s.forcing_amplitude.to_bits(),
+        s.forcing_frequency.to_bits(),
+        s.last_newton_iterations as u64,
+    ]);
+    b
+}
+
+#[test]
+fn failed_advance_leaves_state_unchanged() {
+    let mut t = Table::new("Simulation::advance failure: state unchanged");
+    // First a few good steps (so the state is a moving one, not the initial one), then a load of
+    // 1e9 per unit length with steps of up to 1 s: Newton fails on every sub-step size down to
+    // h / 2^5.
+    let params = SceneParams::with(SceneKind::BuckledBeam, [("dt_max", 1e-5)]).unwrap();
+    let mut sim = Simulation::new(params.clone()).unwrap();
+    for _ in 0..3 {
+        sim.advance(1e-4, 0.5).unwrap();
+    }
+    sim.set_forcing(1e9, 0.0).unwrap();
+    let before = sim.snapshot();
+    let outputs_before = sim.outputs();
+    let result = sim.advance(0.5, 3.0);
+    t.row(format_args!(
+        "  after 3 steps: advance(0.5) with F = 1e9 (50000 sub-steps of dt_max would be needed; \
+         it fails on the first): {result:?}"
+    ));
+    assert!(result.is_err(), "expected a failing step");
+    let after = sim.snapshot();
+    assert_eq!(
+        bits(&before),
+        bits(&after),
+        "state changed by a failed step"
+    );
+    assert_eq!(sim.time().to_bits(), before.time.to_bits());
+    let outputs_after = sim.outputs();
+    assert_eq!(
+        format!("{outputs_before:?}"),
+        format!("{outputs_after:?}"),
+        "outputs changed"
+    );
+    // The failure leaves no trace in the integrator either: continuing with a sane load gives
+    // bit for bit what a simulation restored from the same snapshot gives.
+    sim.set_forcing(0.7, 3500.0).unwrap();
+    let mut twin = Simulation::new(params).unwrap();
+    twin.restore(&before).unwrap();
+    twin.set_forcing(0.7, 3500.0).unwrap();
+    for _ in 0..5 {
+        sim.advance(1e-5, 0.0).unwrap();
+        twin.advance(1e-5, 0.0).unwrap();
+    }
+    t.row(format_args!(
+        "  bit-identical before/after the failure: yes; continuation equals a restored twin: {}",
+        bits(&sim.snapshot()) == bits(&twin.snapshot())
+    ));
+    assert_eq!(bits(&sim.snapshot()), bits(&twin.snapshot()));
+}
+
+#[test]
+fn substeps_equal_separate_communication_steps() {
+    let mut t = Table::new(
+        "communication step of 1e-4 (10 sub-steps of dt_max = 1e-5) vs 10 steps of 1e-5",
+    );
+    t.row(format_args!(
+        "{:<12} {:>5} {:>14} {:>14} {:>14} {:>8}",
+        "scene", "step", "max |du|", "max |dv|", "|u| scale", "bitwise"
+    ));
+    for (kind, f, f_ctrl) in [
+        (SceneKind::BuckledBeam, 0.7, 0.0),
+        (SceneKind::PinnedArch, 50.0, 5.0),
+    ] {
+        let params = SceneParams::with(kind, [("F", f)]).unwrap();
+        let mut a = Simulation::new(params.clone()).unwrap();
+        let mut b = Simulation::new(params).unwrap();
+        let mut worst = 0.0f64;
+        for k in 1..=5 {
+            let report = a.advance(1e-4, f_ctrl).unwrap();
+            assert_eq!(report.substeps, 10);
+            for _ in 0..10 {
+                let r = b.advance(1e-5, f_ctrl).unwrap();
+                assert_eq!(r.substeps, 1);
+            }
+            let (sa, sb) = (a.state(), b.state());
+            let du = max_abs_diff(&sa.u, &sb.u);
+            let dv = max_abs_diff(&sa.v, &sb.v);
+            let scale = max_abs(&sa.u);
+            let bitwise =
+                sa.u.iter()
+                    .chain(&sa.v)
+                    .zip(sb.u.iter().chain(&sb.v))
+                    .all(|(x, y)| x.to_bits() == y.to_bits());
+            t.row(format_args!(
+                "{:<12} {k:>5} {du:>14.3e} {dv:>14.3e} {scale:>14.3e} {bitwise:>8}",
+                kind.name()
+            ));
+            // Velocity scale of round-off: v_(n+1) = 2 du / dt - v_n turns an ulp of u into
+            // 2 eps |u| / dt, so velocities are compared relative to |v| + |u| / dt.
+            let v_scale = max_abs(&sa.v) + scale / 1e-5;
+            worst = worst.max(du / scale).max(dv / v_scale);
+            // The two differ only in how t_k and dt are rounded (t0 + k h/10 with h/10 vs a
+            // running sum of 1e-5 with dt = 1e-5): the states agree to 1e-12 relative.
+            assert!(
+                du <= 1e-12 * scale,
+                "{kind}: displacements differ by {du:e}"
+            );
+            assert!(dv <= 1e-12 * v_scale, "{kind}: velocities differ by {dv:e}");
+        }
+        assert!((a.time() - b.time()).abs() < 1e-15);
+        t.row(format_args!(
+            "  {}: worst relative difference {worst:.2e}",
+            kind.name()
+        ));
+    }
+}
