@@ -8,7 +8,7 @@
 //! undamped, unforced rod exactly, and linear and angular momentum like the midpoint rule. Its
 //! Newton uses the midpoint Jacobian (exact up to `O(du)`), so it converges fast but linearly.
 //! All buffers live in [`Midpoint`]: a step allocates nothing.
-use super::newton::{inf_norm, inf_norm_free, NewtonFailure, NewtonSettings, NewtonStats};
+use super::newton::{inf_norm, newton_correction, NewtonFailure, NewtonSettings, NewtonStats};
 use crate::model::{LoadCase, Rod};
 use crate::solver::BlockTridiagonal;
 use serde::{Deserialize, Serialize};
@@ -125,18 +125,8 @@ impl Midpoint {
             rod.add_mass_times(&self.u_mid, &mut self.residual, 1.0);
             rod.add_damping_times(&self.du, &mut self.residual, c);
             loads.add_to(t_mid, &mut self.residual, -1.0);
-            rod.zero_constrained(&mut self.residual);
-            let residual_norm = inf_norm_free(&self.residual, &rod.fixed);
-            if !residual_norm.is_finite() {
-                return Err(NewtonFailure::NonFinite {
-                    iteration: stats.iterations,
-                });
-            }
-            self.jac.constrain(&rod.fixed);
-            self.jac.factor()?;
-            self.residual.iter_mut().for_each(|r| *r = -*r);
-            self.jac.solve_in_place(&mut self.residual);
-            let correction = inf_norm(&self.residual);
+            let (residual_norm, correction) =
+                newton_correction(rod, &mut self.jac, &mut self.residual, stats.iterations)?;
             for (d, r) in self.du.iter_mut().zip(&self.residual) {
                 *d += r;
             }

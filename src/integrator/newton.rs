@@ -1,5 +1,6 @@
 //! Newton iteration settings, statistics and failures shared by the static and dynamic solvers.
-use crate::solver::SingularMatrix;
+use crate::model::Rod;
+use crate::solver::{BlockTridiagonal, SingularMatrix};
 use std::fmt;
 
 /// When Newton stops. Convergence: `|delta|_inf <= relative * |increment|_inf + absolute`, where
@@ -96,6 +97,27 @@ impl From<SingularMatrix> for NewtonFailure {
     fn from(s: SingularMatrix) -> Self {
         NewtonFailure::Singular(s)
     }
+}
+
+/// One Newton correction: with the residual `R` in `residual` and the Jacobian assembled in
+/// `jac` (constraints not yet applied), removes the constrained dofs, factors and overwrites
+/// `residual` with `-J^-1 R`. Returns the norms of `R` (free dofs) and of the correction.
+pub(crate) fn newton_correction(
+    rod: &Rod,
+    jac: &mut BlockTridiagonal,
+    residual: &mut [f64],
+    iteration: u32,
+) -> Result<(f64, f64), NewtonFailure> {
+    rod.zero_constrained(residual);
+    let residual_norm = inf_norm_free(residual, &rod.fixed);
+    if !residual_norm.is_finite() {
+        return Err(NewtonFailure::NonFinite { iteration });
+    }
+    jac.constrain(&rod.fixed);
+    jac.factor()?;
+    residual.iter_mut().for_each(|r| *r = -*r);
+    jac.solve_in_place(residual);
+    Ok((residual_norm, inf_norm(residual)))
 }
 
 pub(crate) fn inf_norm(x: &[f64]) -> f64 {

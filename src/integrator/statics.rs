@@ -1,6 +1,6 @@
 //! Static equilibrium `f_int(u) = f_ext` by Newton with the consistent tangent. Constrained dofs
 //! keep the values they have in `u` (prescribed displacements are set by the caller).
-use super::newton::{inf_norm, inf_norm_free, NewtonFailure, NewtonSettings, NewtonStats};
+use super::newton::{newton_correction, NewtonFailure, NewtonSettings, NewtonStats};
 use crate::model::Rod;
 use crate::solver::BlockTridiagonal;
 
@@ -51,18 +51,8 @@ impl StaticSolver {
             for (r, f) in self.residual.iter_mut().zip(f_ext) {
                 *r -= f;
             }
-            rod.zero_constrained(&mut self.residual);
-            let residual_norm = inf_norm_free(&self.residual, &rod.fixed);
-            if !residual_norm.is_finite() {
-                return Err(NewtonFailure::NonFinite {
-                    iteration: stats.iterations,
-                });
-            }
-            self.jac.constrain(&rod.fixed);
-            self.jac.factor()?;
-            self.residual.iter_mut().for_each(|r| *r = -*r);
-            self.jac.solve_in_place(&mut self.residual);
-            let correction = inf_norm(&self.residual);
+            let (residual_norm, correction) =
+                newton_correction(rod, &mut self.jac, &mut self.residual, stats.iterations)?;
             for (x, d) in u.iter_mut().zip(&self.residual) {
                 *x += d;
             }
