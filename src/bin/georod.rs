@@ -4,6 +4,10 @@
 //! georod demo [--output DIR]
 //! georod simulate --scene NAME [--set NAME=VALUE]... --step H --stop T [--output FILE.csv]
 //! georod bench-steps --scene NAME [--set NAME=VALUE]... --steps N --dt DT
+//! georod path --scene NAME [--set NAME=VALUE]... [--stop MAX_LOAD] [--max-arc FRACTION]
+//!             [--imperfection EPS] [--output FILE.csv]
+//! georod modes --scene NAME [--set NAME=VALUE]... [--load P] [--count N] [--stop MAX_LOAD]
+//!             [--states FILE.csv] [--output FILE.csv]
 //! ```
 use georod::scene::{SceneKind, SceneParams};
 use georod::simulation::Simulation;
@@ -15,6 +19,10 @@ const USAGE: &str = "usage:
   georod demo [--output DIR]
   georod simulate --scene NAME [--set NAME=VALUE]... --step H --stop T [--output FILE.csv]
   georod bench-steps --scene NAME [--set NAME=VALUE]... --steps N --dt DT
+  georod path --scene NAME [--set NAME=VALUE]... [--stop MAX_LOAD] [--max-arc FRACTION]
+              [--imperfection EPS] [--output FILE.csv]
+  georod modes --scene NAME [--set NAME=VALUE]... [--load P] [--count N] [--stop MAX_LOAD]
+              [--states FILE.csv] [--output FILE.csv]
 scenes: BuckledBeam, PinnedArch, ClampedArch; parameters: the FMU names (E, nu, F, Omega, ...)";
 
 struct Options {
@@ -24,6 +32,16 @@ struct Options {
     stop: Option<f64>,
     steps: Option<usize>,
     output: Option<String>,
+    /// `path`: largest arc length as a fraction of the rod length.
+    max_arc: Option<f64>,
+    /// `path`: asymmetric imperfection, a point load `EPS` times the crown load at `s = S/4`.
+    imperfection: f64,
+    /// `modes`: the load of the equilibria (default: the preload `P0`).
+    load: Option<f64>,
+    /// `modes`: how many modes per equilibrium.
+    count: usize,
+    /// `modes`: also write the equilibria's displacement vectors here.
+    states: Option<String>,
 }
 
 fn parse(args: &[String]) -> Result<Options, String> {
@@ -34,6 +52,11 @@ fn parse(args: &[String]) -> Result<Options, String> {
         stop: None,
         steps: None,
         output: None,
+        max_arc: None,
+        imperfection: 0.0,
+        load: None,
+        count: 6,
+        states: None,
     };
     let mut it = args.iter();
     while let Some(flag) = it.next() {
@@ -56,6 +79,11 @@ fn parse(args: &[String]) -> Result<Options, String> {
             "--stop" => o.stop = Some(number(value()?)?),
             "--steps" => o.steps = Some(number(value()?)? as usize),
             "--output" => o.output = Some(value()?.clone()),
+            "--max-arc" => o.max_arc = Some(number(value()?)?),
+            "--imperfection" => o.imperfection = number(value()?)?,
+            "--load" => o.load = Some(number(value()?)?),
+            "--count" => o.count = number(value()?)? as usize,
+            "--states" => o.states = Some(value()?.clone()),
             other => return Err(format!("unknown option `{other}`")),
         }
     }
@@ -129,51 +157,168 @@ fn run(args: &[String]) -> Result<(), String> {
                 None => print!("{csv}"),
             }
         }
+        "modes" => {
+            let csv = modes(&o)?;
+            match &o.output {
+                Some(path) => std::fs::write(path, csv).map_err(|e| format!("{path}: {e}"))?,
+                None => print!("{csv}"),
+            }
+        }
         "demo" => demo(o.output.as_deref().unwrap_or("out"))?,
         _ => return Err(USAGE.to_string()),
     }
     Ok(())
 }
 
-/// The static crown-load path of an arch scene (arc-length continuation from the unloaded arch):
-/// rows `load,w_mid,stable,negative_eigenvalues`, then the critical points as comment lines.
-fn static_path(o: &Options, max_load: f64) -> Result<String, String> {
-    use georod::integrator::continuation::{critical_points, follow_path, ContinuationSettings};
+/// The static path of an arch scene with its critical points and its equilibria at one load.
+struct StaticPath {
+    rod: georod::model::Rod,
+    q: Vec<f64>,
+    path: georod::integrator::continuation::Path,
+    settings: georod::integrator::continuation::ContinuationSettings,
+    /// Index of the starting point (the initial state) in `path`.
+    start: usize,
+}
+
+/// Arc-length continuation of the crown load from the scene's initial state (the unloaded arch,
+/// or its equilibrium under `P0`), both ways, up to `|load| = max_load`.
+fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
+    use georod::integrator::continuation::{follow_both_ways, ContinuationSettings};
     let params = SceneParams::with(o.scene, o.overrides.iter().map(|(k, v)| (k.as_str(), *v)))
         .map_err(|e| e.to_string())?;
     let (rod, _) = georod::simulation::build_rod(&params);
     let u0 = georod::simulation::initial_displacements(&params, &rod).map_err(|e| e.to_string())?;
     let mut q = vec![0.0; rod.dofs()];
     rod.add_point_transverse_load(&mut q, rod.midspan(), 1.0);
+    if o.imperfection != 0.0 {
+        let quarter = rod.point_at(0.25 * rod.curve.length());
+        rod.add_point_transverse_load(&mut q, quarter, o.imperfection);
+    }
     let mut settings = ContinuationSettings::for_rod(&rod, max_load);
+    if let Some(f) = o.max_arc {
+        settings.max_arc_length = f * rod.curve.length();
+        settings.arc_length = settings.arc_length.min(settings.max_arc_length);
+    }
+    settings.max_points = 20_000;
     settings.max_displacement = 4.0 * params.rise.max(params.pre_shortening);
-    let path = follow_path(&rod, &u0, params.preload, &q, &settings);
+    let (path, start) = follow_both_ways(&rod, &u0, params.preload, &q, &settings);
+    Ok(StaticPath {
+        rod,
+        q,
+        path,
+        settings,
+        start,
+    })
+}
+
+/// Labels `z1, z2, ...` of equilibria in order of decreasing `w_mid`.
+fn equilibria(
+    sp: &StaticPath,
+    load: f64,
+) -> Vec<(String, f64, georod::integrator::continuation::Equilibrium)> {
+    use georod::integrator::continuation::equilibria_at_load;
+    let mid = sp.rod.midspan();
+    let mut found: Vec<_> = equilibria_at_load(&sp.rod, &sp.q, &sp.path, load, &sp.settings)
+        .into_iter()
+        .map(|e| (sp.rod.interpolate(&e.u, mid, georod::model::rod::U2), e))
+        .collect();
+    found.sort_by(|a, b| b.0.total_cmp(&a.0));
+    // The same equilibrium reached twice (e.g. at the start and by the path) counts once.
+    found.dedup_by(|a, b| (a.0 - b.0).abs() <= 1e-8 * sp.rod.curve.length());
+    found
+        .into_iter()
+        .enumerate()
+        .map(|(k, (w, e))| (format!("z{}", k + 1), w, e))
+        .collect()
+}
+
+/// The static crown-load path of an arch scene, traced both ways from the initial state: rows
+/// `load,w_mid,stable,negative_eigenvalues` in path order, then comment lines
+/// `# critical,KIND,load,w_mid,negative_before,negative_after` (located by bisection),
+/// `# equilibrium,zK,load,w_mid,negative_eigenvalues` (the path's equilibria at zero load, `z1`
+/// highest) and `# start,INDEX` and `# stopped: ...`.
+fn static_path(o: &Options, max_load: f64) -> Result<String, String> {
+    use georod::integrator::continuation::refine_critical_points;
+    let sp = trace(o, max_load)?;
+    let (rod, path) = (&sp.rod, &sp.path);
     let mut csv = String::from("load,w_mid,stable,negative_eigenvalues\n");
     let mid = rod.midspan();
+    let w_mid = |u: &[f64]| rod.interpolate(u, mid, georod::model::rod::U2);
     for p in &path.points {
-        let w = rod.interpolate(&p.u, mid, georod::model::rod::U2);
         let _ = writeln!(
             csv,
-            "{:e},{w:e},{},{}",
+            "{:e},{:e},{},{}",
             p.load,
+            w_mid(&p.u),
             p.negative_eigenvalues == 0,
             p.negative_eigenvalues
         );
     }
-    for c in critical_points(&path) {
-        let w = rod.interpolate(&path.points[c.index].u, mid, georod::model::rod::U2);
+    for c in refine_critical_points(rod, &sp.q, path, &sp.settings) {
         let _ = writeln!(
             csv,
-            "# {:?} at load {:.6e} (w_mid about {w:.4e})",
-            c.kind, c.load
+            "# critical,{:?},{:.10e},{:.10e},{},{}",
+            c.kind,
+            c.load,
+            w_mid(&c.u),
+            c.negative_before,
+            c.negative_after
         );
     }
+    for (name, w, e) in equilibria(&sp, 0.0) {
+        let _ = writeln!(
+            csv,
+            "# equilibrium,{name},{:e},{w:.10e},{}",
+            e.load, e.negative_eigenvalues
+        );
+    }
+    let _ = writeln!(csv, "# start,{}", sp.start);
     let _ = writeln!(
         csv,
         "# stopped: {} ({} points)",
         path.stop_reason,
         path.points.len()
     );
+    Ok(csv)
+}
+
+/// The lowest natural frequencies about every equilibrium of the static path at one load (the
+/// preload `P0` unless `--load`): rows
+/// `equilibrium,w_mid,negative_eigenvalues,mode,omega_squared,omega,hertz,symmetric`.
+fn modes(o: &Options) -> Result<String, String> {
+    use georod::model::modal::modes;
+    let sp = trace(o, o.stop.unwrap_or(100.0))?;
+    let load = o.load.unwrap_or(sp.path.points[sp.start].load);
+    let mut csv = String::from(
+        "equilibrium,w_mid,negative_eigenvalues,mode,omega_squared,omega,hertz,symmetric\n",
+    );
+    let found = equilibria(&sp, load);
+    if let Some(path) = &o.states {
+        // One row per equilibrium: name, w_mid, negative eigenvalues, then every dof.
+        let mut rows = String::new();
+        for (name, w, e) in &found {
+            let _ = write!(rows, "{name},{w:.17e},{}", e.negative_eigenvalues);
+            for x in &e.u {
+                let _ = write!(rows, ",{x:.17e}");
+            }
+            rows.push('\n');
+        }
+        std::fs::write(path, rows).map_err(|e| format!("{path}: {e}"))?;
+    }
+    for (name, w, e) in found {
+        for (k, m) in modes(&sp.rod, &e.u).iter().take(o.count).enumerate() {
+            let _ = writeln!(
+                csv,
+                "{name},{w:.8e},{},{},{:.8e},{:.8e},{:.8e},{}",
+                e.negative_eigenvalues,
+                k + 1,
+                m.omega_squared,
+                m.omega(),
+                m.hertz(),
+                m.symmetric
+            );
+        }
+    }
     Ok(csv)
 }
 

@@ -13,6 +13,9 @@ pub enum ReferenceCurve {
         span: f64,
         rise: f64,
     },
+    /// Two straight bars `(0, 0) -> (span/2, rise) -> (span, 0)` (a von Mises truss), kinked at
+    /// `s = S/2`; mesh it with an even number of elements so the kink falls on a node.
+    TwoBar { span: f64, rise: f64 },
 }
 
 impl ReferenceCurve {
@@ -36,6 +39,9 @@ impl ReferenceCurve {
             ReferenceCurve::CircularArc {
                 radius, half_angle, ..
             } => 2.0 * radius * half_angle,
+            ReferenceCurve::TwoBar { span, rise } => {
+                2.0 * (0.25 * span * span + rise * rise).sqrt()
+            }
         }
     }
 
@@ -46,6 +52,14 @@ impl ReferenceCurve {
             ReferenceCurve::CircularArc {
                 radius, half_angle, ..
             } => half_angle - s / radius,
+            ReferenceCurve::TwoBar { span, rise } => {
+                let angle = rise.atan2(0.5 * span);
+                if s < 0.5 * self.length() {
+                    angle
+                } else {
+                    -angle
+                }
+            }
         }
     }
 
@@ -64,6 +78,15 @@ impl ReferenceCurve {
                     0.5 * span - radius * a.sin(),
                     rise - radius + radius * a.cos(),
                 )
+            }
+            ReferenceCurve::TwoBar { span, rise } => {
+                let bar = 0.5 * self.length();
+                let (x, y) = (0.5 * span / bar, rise / bar);
+                if s <= bar {
+                    Vector2::new(x * s, y * s)
+                } else {
+                    Vector2::new(x * s, y * (2.0 * bar - s))
+                }
             }
         }
     }

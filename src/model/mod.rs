@@ -3,6 +3,7 @@
 pub mod element;
 pub mod geometry;
 pub mod loads;
+pub mod modal;
 pub mod rod;
 pub mod section;
 
