@@ -13,6 +13,10 @@ pub const SNAPSHOT_VERSION: u32 = 2;
 /// How often a failing sub-step is halved before a communication step is given up.
 pub const MAX_STEP_CUTS: u32 = 5;
 
+/// Most sub-steps one communication step may take (after cuts): beyond this a step is refused
+/// rather than run for hours (`dt_max` far below the communication step).
+pub const MAX_SUBSTEPS: usize = 10_000_000;
+
 /// Load steps used to reach the initial static state.
 const RAMP_STEPS: usize = 20;
 
@@ -380,6 +384,7 @@ impl Simulation {
     /// The fewest equal sub-steps no longer than `dt_max` that make up `h`.
     pub fn substeps_for(&self, h: f64) -> usize {
         // The factor forgives round-off in h / dt_max (1e-4 / 1e-5 is 10.000000000000002).
+        // (`as usize` saturates: an absurd ratio becomes usize::MAX, refused by `advance`.)
         ((h / self.params.dt_max) * (1.0 - 1e-12)).ceil().max(1.0) as usize
     }
 
@@ -406,6 +411,13 @@ impl Simulation {
         self.f_ctrl = f_ctrl;
         let t0 = self.time();
         let mut substeps = self.substeps_for(h);
+        if substeps > MAX_SUBSTEPS {
+            return Err(SimError::BadArgument(format!(
+                "a step of {h} s with dt_max = {} s needs {substeps} sub-steps, more than \
+                 {MAX_SUBSTEPS}: raise dt_max or shorten the communication step",
+                self.params.dt_max
+            )));
+        }
         let mut last_failure = None;
         for cuts in 0..=MAX_STEP_CUTS {
             match self.try_substeps(h, substeps) {
@@ -423,7 +435,10 @@ impl Simulation {
                 }
                 Err(e) => last_failure = Some(e),
             }
-            substeps *= 2;
+            substeps = substeps.saturating_mul(2);
+            if substeps > MAX_SUBSTEPS {
+                break;
+            }
         }
         let reason = last_failure.map_or_else(String::new, |e| e.to_string());
         Err(SimError::StepFailed {

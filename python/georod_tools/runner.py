@@ -179,7 +179,7 @@ class Instance:
                 f"{', '.join(m.parameters)}"
             )
         vr = m.vr[name]
-        if m.types[name] == "Integer":
+        if m.types[name] in ("Integer", "Enumeration"):
             if float(value) != int(value):
                 raise ValueError(f"parameter {name} is an Integer, got {value}")
             self._call(lambda: self.slave.setInteger([vr], [int(value)]), f"setting {name}={value}")

@@ -166,7 +166,7 @@ def set_values(slave: FMU2Slave, info: FmuInfo, values: Mapping[str, Value]) -> 
     """Sets variables by name, Real or Integer according to the model description."""
     for name, value in values.items():
         vr = info.vr[name]
-        if info.types[name] == "Integer":
+        if info.types[name] in ("Integer", "Enumeration"):
             slave.setInteger([vr], [int(value)])
         else:
             slave.setReal([vr], [float(value)])

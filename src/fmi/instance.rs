@@ -645,6 +645,17 @@ impl Instance {
                         report.cuts
                     )
                 });
+                // Sub-steps of half a forcing period or more sample the excitation at its
+                // midpoints only: the step converges but cannot represent the load.
+                let dt = h / report.substeps as f64;
+                let omega = sim.params().forcing_frequency;
+                if omega * dt >= std::f64::consts::PI && sim.params().forcing_amplitude != 0.0 {
+                    self.log.warning(&format!(
+                        "fmi2DoStep: sub-step {dt:e} s is at least half the forcing period \
+                         (Omega dt = {:.3} >= pi): the excitation is aliased; lower dt_max",
+                        omega * dt
+                    ));
+                }
                 Ok(())
             }
             Err(e @ SimError::StepFailed { .. }) => {

@@ -5,8 +5,12 @@
 //! With [`Scheme::EnergyMomentum`] the internal force `f_int(u_n + du/2)` is replaced by the
 //! discrete gradient of the element energies between `u_n` and `u_n + du`
 //! ([`crate::model::Element::discrete_gradient`]): the step then conserves the energy of an
-//! undamped, unforced rod exactly, and linear and angular momentum like the midpoint rule. Its
-//! Newton uses the midpoint Jacobian (exact up to `O(du)`), so it converges fast but linearly.
+//! undamped, unforced rod exactly (to solver tolerance) and linear momentum exactly; angular
+//! momentum is not exactly conserved (the exact director chord carries `sinc(Dtheta/2)` where the
+//! rotation generator of the mid configuration carries `cos(Dtheta/2)`): its error is small for
+//! smooth motions (second order in tests/energy_momentum.rs) but grows with run length for fast
+//! spinning (docs/stability.md). Newton uses the midpoint Jacobian (exact up to `O(du)`), so it
+//! converges fast but linearly.
 //! All buffers live in [`Midpoint`]: a step allocates nothing.
 use super::newton::{inf_norm, newton_correction, NewtonFailure, NewtonSettings, NewtonStats};
 use crate::model::{LoadCase, Rod};
@@ -38,7 +42,7 @@ pub enum Scheme {
     /// The implicit midpoint rule of the paper (symplectic, conserves momenta).
     #[default]
     Midpoint,
-    /// The energy-momentum scheme: conserves energy and momenta.
+    /// The discrete-gradient scheme: conserves energy and linear momentum.
     EnergyMomentum,
 }
 
