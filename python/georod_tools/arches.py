@@ -282,6 +282,118 @@ def poincare_grid(
 
 
 # --------------------------------------------------------------------------------------------
+# ClampedArch: the modulated (quasi-periodic) motion of the paper's Figure 11 and the doubling
+# of its ring (Figure 12), found by the scan documented in docs/arches.md section 4.
+
+CLAMPED_RING = {"Omega": 2000.0, "F": 112.0, "d": 1e-4}
+"""Figure 11 analogue: a ring in the Poincaré section (Neimark-Sacker window F = 110..113 at
+Omega = 2000, d = 1e-4; period-1 at F = 115, the ring breaks up below F = 110)."""
+
+CLAMPED_DOUBLING_OMEGA = 1950.0
+CLAMPED_DOUBLING_FORCES = (99.0, 101.0, 102.0, 105.0)
+"""Figure 12 analogue at Omega = 1950, d = 1e-4: ring (99), ring wound twice (101), break-up
+(102, exponent ~0.01), chaotic modulated motion (105)."""
+
+
+def clamped_ring_case(
+    F: float = CLAMPED_RING["F"],
+    Omega: float = CLAMPED_RING["Omega"],
+    d: float = CLAMPED_RING["d"],
+    transient_periods: int = 1500,
+    sample_periods: int = 400,
+    dense_periods: int = 60,
+    lyapunov: bool = True,
+) -> CaseResult:
+    """The ClampedArch's quasi-periodic case (defaults: Figure 11 analogue) from the FMU's initial
+    state, 20 communication steps per period, dt_max = 1e-5, 10 elements. The short version used
+    by the test (400 + 300 periods, ~5-8 s) classifies the same."""
+    return run_case_from(
+        _case(
+            "ClampedArch",
+            F=F,
+            Omega=Omega,
+            params=(("d", d),),
+            transient_periods=transient_periods,
+            sample_periods=sample_periods,
+            dense_periods=dense_periods,
+            lyapunov=lyapunov,
+        )
+    )
+
+
+def rotation_number(samples: np.ndarray) -> float:
+    """Mean fraction of a turn per forcing period of the section points about their centroid
+    (coordinates scaled by their ranges); meaningful for a ring that encloses its centroid."""
+    s = np.asarray(samples, dtype=float)
+    z = (s[:, 0] - s[:, 0].mean()) / np.ptp(s[:, 0]) + 1j * (s[:, 1] - s[:, 1].mean()) / np.ptp(
+        s[:, 1]
+    )
+    a = np.unwrap(np.angle(z))
+    return float(abs(a[-1] - a[0]) / (len(a) - 1) / (2.0 * math.pi))
+
+
+def plot_clamped_ring(r: CaseResult, path: str | Path, zoom_periods: int = 16) -> Path:
+    """Figure 11 analogue: Poincaré section (the ring); w_mid(t) over the last `zoom_periods`
+    periods with the stroboscopic points; the stroboscopic w_mid(kT) over all sampled periods
+    (the modulation); phase portrait over the dense periods."""
+    path = Path(path)
+    fig, (ax_p, ax_t, ax_k, ax_ph) = plt.subplots(1, 4, figsize=(19, 4.4), constrained_layout=True)
+    s = r.samples
+    period = r.config.period
+    ax_p.plot(s[:, 0], s[:, 1], ".", ms=3, color="k")
+    ax_p.ticklabel_format(useOffset=False)
+    ax_p.set(title=f"Poincaré section (t = kT), {len(s)} periods", xlabel="w_mid", ylabel="v_mid")
+    ax_k.plot(np.rint(r.sample_times / period), s[:, 0], ".-", ms=3, lw=0.4, color="tab:red")
+    ax_k.ticklabel_format(useOffset=False)
+    ax_k.set(title="modulation: w_mid(kT)", xlabel="period k", ylabel="w_mid(kT)")
+    if r.dense is not None and r.dense.shape[0] > 1:
+        d = r.dense
+        last = d[d[:, 0] >= d[-1, 0] - zoom_periods * period - 1e-12]
+        in_zoom = r.sample_times >= last[0, 0] - 1e-12
+        ax_t.plot(last[:, 0], last[:, 1], "-", lw=0.8, color="tab:blue")
+        ax_t.plot(r.sample_times[in_zoom], s[in_zoom, 0], ".", ms=5, color="tab:red")
+        in_window = r.sample_times >= d[0, 0] - 1e-12
+        ax_ph.plot(d[:, 1], d[:, 2], "-", lw=0.4, color="tab:blue")
+        ax_ph.plot(s[in_window, 0], s[in_window, 1], ".", ms=4, color="tab:red")
+    ax_t.set(title=f"w_mid(t), last {zoom_periods} periods (red: t = kT)", xlabel="t (s)")
+    ax_ph.set(title="phase portrait (red: t = kT)", xlabel="w_mid", ylabel="v_mid")
+    c = r.config
+    fig.suptitle(
+        f"ClampedArch, Omega = {c.Omega:g}, F = {c.F:g}, {dict(c.params)}: "
+        f"{r.classification.label}, λ = {r.exponent_per_period:.4f}/period, "
+        f"dimension {r.classification.dimension:.2f}, rotation number {rotation_number(s):.3f}"
+    )
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    return path
+
+
+def plot_ring_doubling(results: list[CaseResult], path: str | Path) -> Path:
+    """Figure 12 analogue: Poincaré sections along F, consecutive samples in alternating colours
+    (a ring wound twice is one curve: both colours lie on it)."""
+    path = Path(path)
+    fig, axes = plt.subplots(
+        1, len(results), figsize=(3.6 * len(results), 3.4), constrained_layout=True, squeeze=False
+    )
+    for ax, r in zip(axes.flat, results, strict=True):
+        s = r.samples
+        ax.plot(s[::2, 0], s[::2, 1], ".", ms=2, color="k")
+        ax.plot(s[1::2, 0], s[1::2, 1], ".", ms=2, color="tab:orange")
+        ax.ticklabel_format(useOffset=False)
+        ax.tick_params(labelsize=7)
+        ax.set_xlabel("w_mid", fontsize=8)
+        ax.set_ylabel("v_mid", fontsize=8)
+        ax.set_title(
+            f"Omega = {r.config.Omega:g}, F = {r.config.F:g}\n{r.classification.label}, "
+            f"λ = {r.exponent_per_period:.3f}, dim {r.classification.dimension:.2f}",
+            fontsize=8,
+        )
+    fig.savefig(path, dpi=90)
+    plt.close(fig)
+    return path
+
+
+# --------------------------------------------------------------------------------------------
 # The study (scripts/study_arches): every figure of docs/arches.md.
 
 
@@ -377,6 +489,31 @@ def study(out: Path, figures: Path, quick: bool = False) -> None:
         [f"Omega = {om:g}, F = {f:g}" for om, f in clamped_cases],
         figures / "arches_clamped.png",
     )
+    #    Figure 11 analogue: the ring (quasi-periodic modulated motion), and Figure 12: its ring
+    #    wound twice, break-up and chaos along F at Omega = 1950.
+    ring = clamped_ring_case(
+        transient_periods=400 if quick else 1500, sample_periods=300 if quick else 400
+    )
+    plot_clamped_ring(ring, figures / "arches_clamped_ring.png")
+    _log(
+        log,
+        f"Figure 11 analogue: ClampedArch {CLAMPED_RING}: {ring.classification.label}, "
+        f"exponent {ring.exponent_per_period:.4f} ({ring.classification.note}), rotation number "
+        f"{rotation_number(ring.samples):.3f}",
+    )
+    doubling = []
+    for f in CLAMPED_DOUBLING_FORCES[:1] if quick else CLAMPED_DOUBLING_FORCES:
+        r = clamped_ring_case(
+            F=f, Omega=CLAMPED_DOUBLING_OMEGA, transient_periods=3000, sample_periods=600
+        )
+        doubling.append(r)
+        _log(
+            log,
+            f"Figure 12 analogue: Omega = {CLAMPED_DOUBLING_OMEGA:g}, F = {f:g}, d = 1e-4: "
+            f"{r.classification.label}, exponent {r.exponent_per_period:.4f} "
+            f"({r.classification.note})",
+        )
+    plot_ring_doubling(doubling, figures / "arches_clamped_doubling.png")
     # 5. Onset of chaos against the element count (Figure 9): smallest F in the list classified
     #    chaotic, at Omega = 1000, from z1.
     counts = [2, 3, 4, 6, 8, 10, 12, 16, 20] if not quick else [4, 10]

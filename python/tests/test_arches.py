@@ -5,7 +5,8 @@
   arches_chaos_pinned.png; a short run (100 + 100 periods) already measures an exponent of
   ~0.8 per period.
 - A start in the inverted well z3 (patched serialized state) stays there at small forcing.
-- ClampedArch quasi-periodic: no case found yet (see docs/arches.md), so that test is skipped.
+- ClampedArch, d = 1e-4, Omega = 2000 rad/s, F = 112: the modulated (quasi-periodic) snap-through
+  motion of docs/figures/arches_clamped_ring.png (a ring in the Poincaré section).
 """
 
 from __future__ import annotations
@@ -13,9 +14,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-import pytest
 
-from georod_tools.arches import equilibrium_states, run_case_from
+from georod_tools.arches import CLAMPED_RING, equilibrium_states, run_case_from
 from georod_tools.runner import CaseConfig
 
 
@@ -48,9 +48,19 @@ def test_pinned_arch_starts_in_z3(fmu_paths: dict[str, Path]) -> None:
     assert np.all(r.samples[:, 0] < -3.5)
 
 
-@pytest.mark.skip(reason="no ClampedArch quasi-periodic case found yet (docs/arches.md)")
 def test_clamped_arch_quasi_periodic(fmu_paths: dict[str, Path]) -> None:
+    # Figure 11 analogue (docs/arches.md section 4), short: 400 + 300 periods (~5-8 s).
     r = run_case_from(
-        _config(fmu_paths["ClampedArch"], F=60.0, Omega=2100.0, params=(("d", 1e-4),))
+        _config(
+            fmu_paths["ClampedArch"],
+            F=CLAMPED_RING["F"],
+            Omega=CLAMPED_RING["Omega"],
+            params=(("d", CLAMPED_RING["d"]),),
+            transient_periods=400,
+            sample_periods=300,
+        )
     )
     assert r.classification.kind == "quasi-periodic", r.classification.note
+    # A ring of finite size: the section moves over a few percent of the swing of w_mid.
+    w = r.samples[:, 0]
+    assert 0.05 < np.ptp(w) < 0.5 and np.all(w < -5.5)
