@@ -119,6 +119,12 @@ def build_parser() -> argparse.ArgumentParser:
     ps.add_argument("--scheduler", help="address of a running Dask scheduler (no local cluster)")
     ps.add_argument("--no-progress", action="store_true", help="no progress bar")
     _add_case_options(ps, sweep=True)
+    from georod_tools.study import add_study_parser
+
+    add_study_parser(sub)
+    from georod_tools.benchmark import add_benchmark_parser
+
+    add_benchmark_parser(sub)
     return parser
 
 
@@ -315,6 +321,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.command == "study":
+        from georod_tools.study import run_study_command
+
+        return run_study_command(parser, args)
+    if args.command == "benchmark":
+        from georod_tools.benchmark import run_benchmark_command
+
+        return run_benchmark_command(parser, args)
     _check(parser, args)
     try:
         if args.command == "case":

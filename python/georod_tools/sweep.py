@@ -79,7 +79,7 @@ def run_sweep(
                     n_workers=workers,
                     threads_per_worker=1,
                     processes=True,
-                    dashboard_address=None,
+                    dashboard_address=":0",
                     silence_logs=logging.WARNING,
                 )
             )
