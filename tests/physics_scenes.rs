@@ -102,6 +102,10 @@ fn buckled_beam_initial_state() {
                 thrust > p_h,
                 "thrust {thrust} below the discrete buckling load {p_h}"
             );
+            if elements == 10.0 {
+                // The scene as shipped (10 elements): above the Euler load, as the issue states.
+                assert!(thrust > euler, "thrust {thrust} below the Euler load {euler}");
+            }
             w_mids.push(w_mid);
             states.push(u.clone());
         }
