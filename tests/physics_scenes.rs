@@ -104,7 +104,10 @@ fn buckled_beam_initial_state() {
             );
             if elements == 10.0 {
                 // The scene as shipped (10 elements): above the Euler load, as the issue states.
-                assert!(thrust > euler, "thrust {thrust} below the Euler load {euler}");
+                assert!(
+                    thrust > euler,
+                    "thrust {thrust} below the Euler load {euler}"
+                );
             }
             w_mids.push(w_mid);
             states.push(u.clone());

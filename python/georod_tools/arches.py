@@ -23,18 +23,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from georod_tools.classify import classify  # noqa: E402
-from georod_tools.fmu_state import decode_state, encode_state  # noqa: E402
-from georod_tools.lyapunov import LyapunovSettings, benettin, initial_direction  # noqa: E402
-from georod_tools.runner import (  # noqa: E402
-    CaseConfig,
-    CaseResult,
-    FmuModel,
-    FmuPair,
-    Instance,
-    Recorder,
-    advance_periods,
-)
+from georod_tools.runner import CaseConfig, CaseResult, run_case  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
 GEOROD = REPO / "target" / "release" / "georod"
@@ -188,65 +177,9 @@ def lowest_frequency(scene: str, overrides: dict[str, float] | None = None) -> f
 
 
 def run_case_from(config: CaseConfig, u0: np.ndarray | None = None) -> CaseResult:
-    """:func:`georod_tools.runner.run_case`, but both instances start from the displacements
-    `u0` at rest (a patched serialized FMU state) instead of the FMU's initial state."""
-    t_start = time.perf_counter()
-    cfg = config
-    model = FmuModel.load(cfg.fmu)
-    params = cfg.fmu_parameters()
-
-    def make(name: str) -> Instance:
-        inst = Instance(model, params, cfg.Omega, cfg.n_per_period, name=name)
-        if u0 is not None:
-            blob = inst.serialize()
-            n = decode_state(blob).dofs
-            if u0.size != n:
-                raise ValueError(f"state has {u0.size} dofs, the FMU {n}")
-            inst.restore(encode_state(blob, u0, np.zeros(n)), 0)
-        return inst
-
-    ref = make("reference")
-    pert: Instance | None = None
-    try:
-        advance_periods(ref, cfg.transient_periods)
-        first_dense = cfg.transient_periods + cfg.sample_periods - cfg.dense_periods
-        rec = Recorder(dense=cfg.dense_periods > 0, dense_from_step=first_dense * cfg.n_per_period)
-        lyap = None
-        if cfg.lyapunov:
-            pert = make("perturbed")  # reset from the reference by the pair
-            pair = FmuPair(ref, pert, cfg.Omega, rec)
-            intervals = cfg.sample_periods // cfg.lyapunov_every
-            settings = LyapunovSettings(
-                d0=cfg.lyapunov_d0,
-                every=cfg.lyapunov_every,
-                renormalizations=intervals - cfg.lyapunov_discard,
-                discard=cfg.lyapunov_discard,
-                seed=cfg.seed,
-            )
-            direction = initial_direction(pair.mask.size, cfg.seed, pair.mask)
-            lyap = benettin(pair, settings, direction, period=cfg.period)
-            advance_periods(ref, cfg.sample_periods - intervals * cfg.lyapunov_every, rec)
-        else:
-            advance_periods(ref, cfg.sample_periods, rec)
-    finally:
-        ref.close()
-        if pert is not None:
-            pert.close()
-    strobe = np.asarray(rec.samples, dtype=float).reshape(-1, 3)
-    samples = strobe[:, 1:]
-    size = rec.hi - rec.lo
-    dense = np.asarray(rec.trajectory, dtype=float).reshape(-1, 3) if rec.dense else None
-    exponent = lyap.per_period if lyap is not None else None
-    return CaseResult(
-        config=cfg,
-        samples=samples,
-        sample_times=strobe[:, 0],
-        size=size,
-        dense=dense,
-        lyapunov=lyap,
-        classification=classify(samples, exponent, cfg.classify_settings, size=size),
-        wall_time=time.perf_counter() - t_start,
-    )
+    """:func:`georod_tools.runner.run_case` from the displacements `u0` at rest (e.g. the
+    static equilibrium z3) instead of the FMU's initial state."""
+    return run_case(config, u0)
 
 
 def poincare_grid(

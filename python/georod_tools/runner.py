@@ -413,13 +413,26 @@ class CaseResult:
         return self.lyapunov.per_second if self.lyapunov else math.nan
 
 
-def run_case(config: CaseConfig) -> CaseResult:
-    """Runs one case (see :class:`CaseConfig`) and classifies its motion."""
+def run_case(config: CaseConfig, u0: np.ndarray | None = None) -> CaseResult:
+    """Runs one case (see :class:`CaseConfig`) and classifies its motion. With `u0`, both
+    instances start from these displacements at rest (written into a serialized FMU state)
+    instead of the FMU's own initial state, e.g. from another static equilibrium."""
     t_start = time.perf_counter()
     cfg = config
     model = FmuModel.load(cfg.fmu)
     params = cfg.fmu_parameters()
-    ref = Instance(model, params, cfg.Omega, cfg.n_per_period, name="reference")
+
+    def make(name: str) -> Instance:
+        inst = Instance(model, params, cfg.Omega, cfg.n_per_period, name=name)
+        if u0 is not None:
+            blob = inst.serialize()
+            n = decode_state(blob).dofs
+            if u0.size != n:
+                raise ValueError(f"state has {u0.size} dofs, the FMU {n}")
+            inst.restore(encode_state(blob, u0, np.zeros(n)), 0)
+        return inst
+
+    ref = make("reference")
     pert: Instance | None = None
     try:
         advance_periods(ref, cfg.transient_periods)
@@ -430,7 +443,7 @@ def run_case(config: CaseConfig) -> CaseResult:
             rec.trajectory.append((ref.time, w, v))
         lyap: LyapunovResult | None = None
         if cfg.lyapunov:
-            pert = Instance(model, params, cfg.Omega, cfg.n_per_period, name="perturbed")
+            pert = make("perturbed")
             pair = FmuPair(ref, pert, cfg.Omega, rec)
             intervals = cfg.sample_periods // cfg.lyapunov_every
             settings = LyapunovSettings(
