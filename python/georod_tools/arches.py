@@ -478,14 +478,59 @@ def study(out: Path, figures: Path, quick: bool = False) -> None:
     (out / "study_log.txt").write_text("\n".join(log) + "\n")
 
 
+def _name_value(text: str) -> tuple[str, float]:
+    name, sep, value = text.partition("=")
+    if not sep:
+        raise ValueError(f"--set takes NAME=VALUE, got {text!r}")
+    return name, float(value)
+
+
 def main(argv: list[str] | None = None) -> int:
+    """``python -m georod_tools.arches [study] [--quick]``: the whole study;
+    ``python -m georod_tools.arches static --scene PinnedArch [--set H=2] [--max-load 40]``: the
+    load-displacement diagram of one scene (CSV and PNG)."""
     import argparse
 
-    ap = argparse.ArgumentParser(description="Shallow-arch study (issue 5)")
-    ap.add_argument("--out", default=str(REPO / "out" / "arches"))
-    ap.add_argument("--figures", default=str(REPO / "docs" / "figures"))
-    ap.add_argument("--quick", action="store_true")
+    ap = argparse.ArgumentParser(description="Shallow arches: static diagrams and the study")
+    sub = ap.add_subparsers(dest="command")
+    st = sub.add_parser("static", help="load-displacement diagram of one scene (CSV and PNG)")
+    st.add_argument("--scene", choices=["PinnedArch", "ClampedArch"], default="PinnedArch")
+    st.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="an FMU parameter of the scene, e.g. H=1.5 or elements=20",
+    )
+    st.add_argument("--max-load", type=float, default=60.0, help="largest |crown load| (60)")
+    st.add_argument("--out", default=str(REPO / "out" / "arches"), help="output folder")
+    for p in (ap, sub.add_parser("study", help="the whole study (default)")):
+        p.add_argument("--out", default=str(REPO / "out" / "arches"))
+        p.add_argument("--figures", default=str(REPO / "docs" / "figures"))
+        p.add_argument("--quick", action="store_true")
     a = ap.parse_args(argv)
+    if a.command == "static":
+        if not (math.isfinite(a.max_load) and a.max_load > 0):
+            ap.error(f"--max-load must be finite and > 0, got {a.max_load}")
+        try:
+            overrides = dict(_name_value(t) for t in a.set)
+        except ValueError as e:
+            ap.error(str(e))
+        d = static_diagram(a.scene, overrides, a.max_load)
+        out = Path(a.out)
+        out.mkdir(parents=True, exist_ok=True)
+        csv = out / f"static_{a.scene}.csv"
+        csv.write_text(d.csv)
+        png = plot_static(d, out / f"static_{a.scene}.png")
+        for kind, load, w, before, after in d.critical:
+            print(
+                f"{kind} at load {load:.6g} (w_mid {w:.5g}), negative eigenvalues {before}->{after}"
+            )
+        for name, w, n in d.equilibria:
+            stability = "stable" if n == 0 else "unstable"
+            print(f"zero-load equilibrium {name}: w_mid = {w:.5g} ({stability})")
+        print(f"wrote {csv} and {png}")
+        return 0
     study(Path(a.out), Path(a.figures), quick=a.quick)
     return 0
 

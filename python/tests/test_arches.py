@@ -14,6 +14,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from georod_tools.arches import CLAMPED_RING, equilibrium_states, run_case_from
 from georod_tools.runner import CaseConfig
@@ -64,3 +65,15 @@ def test_clamped_arch_quasi_periodic(fmu_paths: dict[str, Path]) -> None:
     # A ring of finite size: the section moves over a few percent of the swing of w_mid.
     w = r.samples[:, 0]
     assert 0.05 < np.ptp(w) < 0.5 and np.all(w < -5.5)
+
+
+def test_static_command_writes_diagram(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """`python -m georod_tools.arches static`: CSV and PNG of the PinnedArch path, with its
+    three zero-load equilibria (z2 unstable) and its limit points reported."""
+    from georod_tools.arches import main
+
+    assert main(["static", "--scene", "PinnedArch", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert (tmp_path / "static_PinnedArch.csv").stat().st_size > 0
+    assert (tmp_path / "static_PinnedArch.png").stat().st_size > 0
+    assert "z2: w_mid" in out and "(unstable)" in out and out.count("LimitPoint") == 2
