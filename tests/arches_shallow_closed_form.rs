@@ -15,7 +15,7 @@
 use georod::integrator::continuation::{
     follow_path, refine_critical_points, ContinuationSettings, CriticalKind,
 };
-use georod::model::element::{shape_functions, GAUSS_POINTS};
+use georod::model::element::{shape_functions, Element, GAUSS_POINTS};
 use georod::model::rod::{U1, U2};
 use georod::model::{ReferenceCurve, Rod, Section};
 use std::f64::consts::PI;
@@ -81,16 +81,18 @@ fn sinusoidal_arch(n: usize) -> (Rod, Vec<f64>) {
     let mut q = vec![0.0; rod.dofs()];
     for e in 0..n {
         let l = rod.elements[e].length;
+        let mut alphas = [0.0; 2];
         for (g, &xi) in GAUSS_POINTS.iter().enumerate() {
             let (na, nb) = shape_functions(xi);
             let x = abscissa(rod.node_s[e] + nb * l);
             let alpha = slope(x).atan();
-            rod.elements[e].alpha[g] = alpha;
+            alphas[g] = alpha;
             // Load per unit arc length: sin(k x) dx/ds; Gauss weight 1 times l/2.
             let load = (PI * x / SPAN).sin() * alpha.cos() * 0.5 * l;
             q[3 * e + U2] -= na * load;
             q[3 * (e + 1) + U2] -= nb * load;
         }
+        rod.elements[e] = Element::new(l, alphas);
     }
     let last = rod.last_node();
     for node in [0, last] {

@@ -1,6 +1,7 @@
 //! Consistency of the core: the tangent is the derivative of the internal force (element and
 //! assembled rod, straight and curved, large rotations), the force is the derivative of the
-//! energy, and Newton converges quadratically in statics and in a large midpoint step.
+//! energy, Newton converges quadratically in statics and in a large midpoint step, and the
+//! midpoint rule's chord corrections (factorization reused) reach Newton's solution.
 //!
 //! Run: `cargo test --release --test physics_tangent -- --nocapture`
 mod common;
@@ -66,7 +67,7 @@ fn element_tangent_is_derivative_of_force() {
     ];
     for (sec_name, sec) in sections {
         for (name, alpha) in [("straight", [0.0, 0.0]), ("curved", [0.45, 0.12])] {
-            let el = Element { length: 0.8, alpha };
+            let el = Element::new(0.8, alpha);
             let (mut worst, mut worst_e) = (0.0f64, 0.0f64);
             for _ in 0..100 {
                 let ue = random_element_state(&mut rng, el.length);
@@ -277,6 +278,8 @@ fn newton_converges_quadratically() {
         state.v[3 * i + ROTATION] = omega;
     }
     let mut mid = Midpoint::new(&rod);
+    // Plain Newton (one factorization per correction), to see the Jacobian's quadratic rate.
+    mid.reuse_factorization = false;
     t.row(format_args!(
         "\nNewton, midpoint steps dt = 2e-4 of a free rod spinning at 2000 rad/s, bending"
     ));
@@ -291,4 +294,77 @@ fn newton_converges_quadratically() {
         checked >= 3,
         "too few dynamic iterations in the quadratic regime"
     );
+}
+
+/// The midpoint rule reuses a factorization for chord corrections while they contract fast
+/// (`Midpoint::reuse_factorization`, the default). Its steps must agree with plain Newton's to
+/// the Newton tolerance (corrections below 1e-10 of the increment; the states here move by
+/// increments of 1e-3 to 1e-1 per step, so agreement to 1e-11 absolute over a few steps, with
+/// chaos-free large motion), with fewer factorizations.
+#[test]
+fn chord_corrections_reach_the_newton_solution() {
+    let rod = common::straight_rod(10.0, 1.0, 1.0, 5e-4, 20);
+    let loads = LoadCase::new(&rod, ExcitationKind::Distributed);
+    let mut start = DynamicState::at_rest(vec![0.0; rod.dofs()]);
+    for i in 0..rod.nodes() {
+        let s = rod.node_s[i];
+        start.v[3 * i + U1] = 30.0;
+        start.v[3 * i + U2] = 2000.0 * (s - 5.0) + 300.0 * (std::f64::consts::PI * s / 10.0).sin();
+        start.v[3 * i + ROTATION] = 2000.0;
+    }
+    let mut t =
+        Table::new("midpoint steps, plain Newton vs reused factorizations (free spinning rod)");
+    t.row(format_args!(
+        "{:>8} {:>6} {:>20} {:>20} {:>10} {:>10}",
+        "dt", "steps", "Newton corr./fact.", "chord corr./fact.", "max |du|", "max gap"
+    ));
+    for dt in [1e-4, 1e-5, 1e-6] {
+        let steps = 10;
+        let (mut plain, mut reused) = (start.clone(), start.clone());
+        let mut newton = Midpoint::new(&rod);
+        newton.reuse_factorization = false;
+        let mut chord = Midpoint::new(&rod);
+        let (mut newton_work, mut chord_work) = ((0, 0), (0, 0));
+        let (mut worst, mut widest) = (0.0f64, 0.0f64);
+        for n in 0..steps {
+            let t_n = n as f64 * dt;
+            let a = newton
+                .step(&rod, &loads, &mut plain, t_n, dt)
+                .expect("Newton");
+            let b = chord
+                .step(&rod, &loads, &mut reused, t_n, dt)
+                .expect("chord");
+            newton_work = (
+                newton_work.0 + a.iterations,
+                newton_work.1 + a.factorizations,
+            );
+            chord_work = (chord_work.0 + b.iterations, chord_work.1 + b.factorizations);
+            assert_eq!(a.iterations, a.factorizations);
+            let increment = max_abs(newton.last_increment());
+            let gap =
+                (plain.u.iter().zip(&reused.u)).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            // Both are within 1e-10 |du| + 1e-12 of the exact step; errors add up over steps.
+            assert!(
+                gap <= (n + 1) as f64 * (2e-10 * increment + 2e-12),
+                "dt = {dt:e}, step {n}: states differ by {gap:e} (increment {increment:e})"
+            );
+            worst = worst.max(increment);
+            widest = widest.max(gap);
+        }
+        t.row(format_args!(
+            "{dt:>8.0e} {steps:>6} {:>20} {:>20} {worst:>10.3e} {widest:>10.3e}",
+            format!("{}/{}", newton_work.0, newton_work.1),
+            format!("{}/{}", chord_work.0, chord_work.1)
+        ));
+        assert!(
+            chord_work.1 <= newton_work.1,
+            "reuse must not factor more often"
+        );
+        if dt <= 1e-5 {
+            assert!(
+                chord_work.1 < newton_work.1,
+                "dt = {dt:e}: no factorization saved"
+            );
+        }
+    }
 }

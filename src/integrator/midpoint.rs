@@ -12,7 +12,9 @@
 //! the rotation of the mid configuration carries `cos(dw/2)`, and `tan` reconciles them).
 //! Newton uses the midpoint Jacobian (exact up to `O(du)`), so it converges fast but linearly.
 //! All buffers live in [`Midpoint`]: a step allocates nothing.
-use super::newton::{inf_norm, newton_correction, NewtonFailure, NewtonSettings, NewtonStats};
+use super::newton::{
+    chord_correction, inf_norm, newton_correction, NewtonFailure, NewtonSettings, NewtonStats,
+};
 use crate::model::element::cayley;
 use crate::model::rod::ROTATION;
 use crate::model::{LoadCase, Rod};
@@ -60,11 +62,25 @@ fn motion(scheme: Scheme, dof: usize, du: f64) -> f64 {
     }
 }
 
+/// A chord correction (old factorization) is kept, and the factorization reused, when it is at
+/// most this fraction of the correction before it: it costs about a third of a Newton
+/// correction (no tangent, no factorization) and must gain at least two decades for that.
+const CHORD_CONTRACTION: f64 = 0.01;
+/// A chord correction ends the iteration only when it passes the convergence test with this
+/// margin: the error it leaves is about its contraction rate times itself.
+const CHORD_MARGIN: f64 = 0.1;
+
 #[derive(Clone, Debug)]
 pub struct Midpoint {
     pub settings: NewtonSettings,
     pub scheme: Scheme,
+    /// Reuse the last factorized Jacobian for further corrections while they contract fast
+    /// (see [`Midpoint::step`]); `false` gives plain Newton, one factorization per correction.
+    pub reuse_factorization: bool,
     jac: BlockTridiagonal,
+    /// `2/dt^2 M + C/dt` for `dynamic_dt`: the constant part of the Jacobian.
+    dynamic_part: BlockTridiagonal,
+    dynamic_dt: f64,
     du: Vec<f64>,
     u_mid: Vec<f64>,
     residual: Vec<f64>,
@@ -77,7 +93,10 @@ impl Midpoint {
         Midpoint {
             settings: NewtonSettings::tight(rod.curve.length()),
             scheme: Scheme::Midpoint,
+            reuse_factorization: true,
             jac: BlockTridiagonal::new(rod.nodes()),
+            dynamic_part: BlockTridiagonal::new(rod.nodes()),
+            dynamic_dt: f64::NAN,
             du: vec![0.0; n],
             u_mid: vec![0.0; n],
             residual: vec![0.0; n],
@@ -86,6 +105,18 @@ impl Midpoint {
     }
 
     /// One step of size `dt` from `t_n`. On failure `state` is untouched.
+    ///
+    /// Newton with the exact Jacobian; after each Newton correction the next residual is first
+    /// solved with the same factorization (a chord correction: a residual evaluation and two
+    /// triangular sweeps, no tangent and no factorization). The chord correction is applied when
+    /// it is at most [`CHORD_CONTRACTION`] of the correction before it (and the factorization is
+    /// reused again); otherwise it is dropped and a Newton correction is computed at the same
+    /// iterate. A chord correction ends the iteration when it passes the convergence test ten
+    /// times over ([`CHORD_MARGIN`]): a chord iteration converges linearly, and the error it
+    /// leaves is about its contraction rate times the correction. Right after a Newton
+    /// correction `c` the Jacobian is off by `O(c)`, so the chord correction is the Newton
+    /// correction up to `O(c^2)`: at small steps one Newton and one chord correction per step
+    /// are typical, against two Newton corrections.
     pub fn step(
         &mut self,
         rod: &Rod,
@@ -95,7 +126,12 @@ impl Midpoint {
         dt: f64,
     ) -> Result<NewtonStats, NewtonFailure> {
         let t_mid = t_n + 0.5 * dt;
-        let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
+        if self.dynamic_dt != dt {
+            self.dynamic_part.set_zero();
+            rod.add_mass(&mut self.dynamic_part, 2.0 / (dt * dt));
+            rod.add_damping(&mut self.dynamic_part, 1.0 / dt);
+            self.dynamic_dt = dt;
+        }
         // Predictor: constant velocity.
         for (d, v) in self.du.iter_mut().zip(&state.v) {
             *d = dt * v;
@@ -106,62 +142,42 @@ impl Midpoint {
             *m = -2.0 / dt * v;
         }
         let mut stats = NewtonStats::default();
+        // The last accepted correction, if the current factorization may be reused.
+        let mut reusable: Option<f64> = None;
         loop {
-            self.jac.set_zero();
-            match self.scheme {
-                Scheme::Midpoint => {
-                    for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
-                        *um = u + 0.5 * d;
+            if let Some(previous) = reusable {
+                self.residual(rod, loads, state, t_mid, dt, false);
+                let residual_norm = chord_correction(rod, &self.jac, &mut self.residual).ok_or(
+                    NewtonFailure::NonFinite {
+                        iteration: stats.iterations,
+                    },
+                )?;
+                let chord = inf_norm(&self.residual);
+                let converged = self
+                    .settings
+                    .converged(chord / CHORD_MARGIN, self.increment_after_update());
+                if chord <= CHORD_CONTRACTION * previous {
+                    self.apply_correction();
+                    stats.record(residual_norm, chord);
+                    if converged {
+                        break;
                     }
-                    rod.internal_force_and_tangent(
-                        &self.u_mid,
-                        &mut self.residual,
-                        &mut self.jac,
-                        0.5,
-                    );
-                }
-                Scheme::EnergyMomentum => {
-                    // `u_mid` holds the end state u_n + du here.
-                    for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
-                        *um = u + d;
-                    }
-                    rod.discrete_gradient_and_tangent(
-                        &state.u,
-                        &self.u_mid,
-                        &mut self.residual,
-                        &mut self.jac,
-                        0.5,
-                    );
+                    reusable = Some(chord);
+                    self.check_iteration_limit(&stats, chord)?;
+                    continue;
                 }
             }
-            rod.add_mass(&mut self.jac, a);
-            rod.add_damping(&mut self.jac, c);
-            // M (a du - 2/dt v_n): reuse `u_mid` as scratch for the bracket. The
-            // energy-momentum scheme moves rotations by their Cayley increment (see `motion`).
-            let scheme = self.scheme;
-            for (i, ((s, d), m)) in
-                (self.u_mid.iter_mut().zip(&self.du).zip(&self.inertia)).enumerate()
-            {
-                *s = a * motion(scheme, i, *d) + m;
-            }
-            rod.add_mass_times(&self.u_mid, &mut self.residual, 1.0);
-            rod.add_damping_times(&self.du, &mut self.residual, c);
-            loads.add_to(t_mid, &mut self.residual, -1.0);
+            self.residual(rod, loads, state, t_mid, dt, true);
             let (residual_norm, correction) =
                 newton_correction(rod, &mut self.jac, &mut self.residual, stats.iterations)?;
-            for (d, r) in self.du.iter_mut().zip(&self.residual) {
-                *d += r;
-            }
+            self.apply_correction();
             stats.record(residual_norm, correction);
+            stats.factorizations += 1;
             if self.settings.converged(correction, inf_norm(&self.du)) {
                 break;
             }
-            if stats.iterations >= self.settings.max_iterations || !correction.is_finite() {
-                return Err(NewtonFailure::NotConverged {
-                    iterations: stats.iterations,
-                    correction,
-                });
-            }
+            self.check_iteration_limit(&stats, correction)?;
+            reusable = self.reuse_factorization.then_some(correction);
         }
         self.u_mid.copy_from_slice(&self.du);
         let dofs = state.u.iter_mut().zip(state.v.iter_mut()).zip(&self.du);
@@ -170,6 +186,92 @@ impl Midpoint {
             *v = 2.0 * motion(self.scheme, i, *d) / dt - *v;
         }
         Ok(stats)
+    }
+
+    fn check_iteration_limit(
+        &self,
+        stats: &NewtonStats,
+        correction: f64,
+    ) -> Result<(), NewtonFailure> {
+        if stats.iterations >= self.settings.max_iterations || !correction.is_finite() {
+            return Err(NewtonFailure::NotConverged {
+                iterations: stats.iterations,
+                correction,
+            });
+        }
+        Ok(())
+    }
+
+    /// `|du + correction|_inf` with the correction in `residual`.
+    fn increment_after_update(&self) -> f64 {
+        (self.du.iter().zip(&self.residual)).fold(0.0, |m, (d, r)| m.max((d + r).abs()))
+    }
+
+    fn apply_correction(&mut self) {
+        for (d, r) in self.du.iter_mut().zip(&self.residual) {
+            *d += r;
+        }
+    }
+
+    /// The residual `R(du)` at the current `du` into `residual` and, with `tangent`, the
+    /// Jacobian into `jac` (constraints not yet applied).
+    fn residual(
+        &mut self,
+        rod: &Rod,
+        loads: &LoadCase,
+        state: &DynamicState,
+        t_mid: f64,
+        dt: f64,
+        tangent: bool,
+    ) {
+        if tangent {
+            self.jac.copy_from(&self.dynamic_part);
+        }
+        match self.scheme {
+            Scheme::Midpoint => {
+                for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
+                    *um = u + 0.5 * d;
+                }
+                if tangent {
+                    rod.internal_force_and_tangent(
+                        &self.u_mid,
+                        &mut self.residual,
+                        &mut self.jac,
+                        0.5,
+                    );
+                } else {
+                    rod.internal_force(&self.u_mid, &mut self.residual);
+                }
+            }
+            Scheme::EnergyMomentum => {
+                // `u_mid` holds the end state u_n + du here.
+                for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
+                    *um = u + d;
+                }
+                if tangent {
+                    rod.discrete_gradient_and_tangent(
+                        &state.u,
+                        &self.u_mid,
+                        &mut self.residual,
+                        &mut self.jac,
+                        0.5,
+                    );
+                } else {
+                    rod.discrete_gradient(&state.u, &self.u_mid, &mut self.residual);
+                }
+            }
+        }
+        // M (a du - 2/dt v_n): reuse `u_mid` as scratch for the bracket. The energy-momentum
+        // scheme moves rotations by their Cayley increment (see `motion`).
+        let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
+        let scheme = self.scheme;
+        for (i, ((s, d), m)) in (self.u_mid.iter_mut().zip(&self.du).zip(&self.inertia)).enumerate()
+        {
+            *s = a * motion(scheme, i, *d) + m;
+        }
+        rod.add_mass_times(&self.u_mid, &mut self.residual, 1.0);
+        rod.add_damping_times(&self.du, &mut self.residual, c);
+        loads.add_to(t_mid, &mut self.residual, -1.0);
     }
 
     /// The displacement increment `du` of the last successful step.

@@ -35,7 +35,10 @@ pub const HISTORY: usize = 32;
 /// constrained dofs excluded) at the start of each iteration, `corrections` the Newton updates.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonStats {
+    /// Corrections applied (Newton and chord).
     pub iterations: u32,
+    /// Jacobians assembled and factored (Newton corrections).
+    pub factorizations: u32,
     pub residuals: [f64; HISTORY],
     pub corrections: [f64; HISTORY],
 }
@@ -44,6 +47,7 @@ impl Default for NewtonStats {
     fn default() -> Self {
         NewtonStats {
             iterations: 0,
+            factorizations: 0,
             residuals: [0.0; HISTORY],
             corrections: [0.0; HISTORY],
         }
@@ -118,6 +122,24 @@ pub(crate) fn newton_correction(
     residual.iter_mut().for_each(|r| *r = -*r);
     jac.solve_in_place(residual);
     Ok((residual_norm, inf_norm(residual)))
+}
+
+/// A chord correction: with the residual `R` in `residual` and `jac` factored earlier (at a
+/// nearby iterate), overwrites `residual` with `-J^-1 R`. Returns the norm of `R` (free dofs),
+/// or `None` when it is not finite.
+pub(crate) fn chord_correction(
+    rod: &Rod,
+    jac: &BlockTridiagonal,
+    residual: &mut [f64],
+) -> Option<f64> {
+    rod.zero_constrained(residual);
+    let residual_norm = inf_norm_free(residual, &rod.fixed);
+    if !residual_norm.is_finite() {
+        return None;
+    }
+    residual.iter_mut().for_each(|r| *r = -*r);
+    jac.solve_in_place(residual);
+    Some(residual_norm)
 }
 
 pub(crate) fn inf_norm(x: &[f64]) -> f64 {

@@ -5,8 +5,13 @@
 //! normal and shear forces `S = (S1, S2)` are eliminated per element: with `C = diag(EA, GA)`,
 //! `b(u) = integral (e1, e2) ds`, `S = C b / l`, internal force `B^T S + K_bend u`,
 //! energy `b^T C b / (2 l) + EI l k^2 / 2`, tangent `B^T C B / l + S1 b1'' + S2 b2'' + K_bend`.
+//!
+//! The force and tangent are written out entry by entry (this is the inner loop of every Newton
+//! iteration): `B` has only four distinct translational entries, and the second derivatives of
+//! `b` couple the translations only with the rotations, so the generic products
+//! `B^T C B` and `map^T H map` reduce to a few dozen multiply-adds.
 use super::section::Section;
-use nalgebra::{Matrix2x3, Matrix3, SMatrix, SVector, Vector2, Vector3};
+use nalgebra::{Matrix2x3, SMatrix, SVector, Vector2, Vector3};
 
 pub type Vector6 = SVector<f64, 6>;
 pub type Matrix6 = SMatrix<f64, 6, 6>;
@@ -21,124 +26,211 @@ pub fn shape_functions(xi: f64) -> (f64, f64) {
     (0.5 * (1.0 - xi), 0.5 * (1.0 + xi))
 }
 
+/// Shape functions at the two Gauss points.
+const SHAPE_AT_GAUSS: [(f64, f64); 2] = [
+    (0.788_675_134_594_812_9, 0.211_324_865_405_187_1),
+    (0.211_324_865_405_187_1, 0.788_675_134_594_812_9),
+];
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Element {
     /// Length `l` in arc length.
     pub length: f64,
     /// Exact reference tangent angle at the two Gauss points.
-    pub alpha: [f64; 2],
+    alpha: [f64; 2],
+    /// `(cos alpha, sin alpha)` at the two Gauss points (saves two `sin_cos` per evaluation).
+    tangent: [(f64, f64); 2],
 }
 
-/// Strains at one Gauss point and the map from element dofs to `(u1', u2', w)` there.
-struct GaussPoint {
+/// Strains at one Gauss point: `e1`, `e2` and the current director angle's `cos`, `sin`.
+#[derive(Clone, Copy)]
+struct GaussStrain {
     e1: f64,
     e2: f64,
     cos_aw: f64,
     sin_aw: f64,
-    /// `d(u1', u2', w) / d ue`.
-    map: Matrix3x6,
+}
+
+/// `b = integral (e1, e2) ds` and its gradient `B = db/du`. `B` has the structure
+/// `[[-p1, -p2, r0a, p1, p2, r0b], [p2, -p1, r1a, -p2, p1, r1b]]`.
+#[derive(Clone, Copy)]
+struct StrainIntegrals {
+    b: [f64; 2],
+    p1: f64,
+    p2: f64,
+    /// `(r0a, r0b, r1a, r1b)`: the rotation columns of `B`.
+    r: [f64; 4],
+    gauss: [GaussStrain; 2],
+}
+
+impl StrainIntegrals {
+    /// `B` as an array of its two rows.
+    fn rows(&self) -> [[f64; 6]; 2] {
+        let (p1, p2, r) = (self.p1, self.p2, self.r);
+        [
+            [-p1, -p2, r[0], p1, p2, r[1]],
+            [p2, -p1, r[2], -p2, p1, r[3]],
+        ]
+    }
 }
 
 impl Element {
-    fn gauss_point(&self, g: usize, ue: &Vector6) -> GaussPoint {
-        let inv_l = 1.0 / self.length;
-        let (na, nb) = shape_functions(GAUSS_POINTS[g]);
-        let du1 = (ue[3] - ue[0]) * inv_l;
-        let du2 = (ue[4] - ue[1]) * inv_l;
-        let w = na * ue[2] + nb * ue[5];
-        let (sin_w, cos_w) = w.sin_cos();
-        let (sin_aw, cos_aw) = (self.alpha[g] + w).sin_cos();
-        #[rustfmt::skip]
-        let map = Matrix3x6::new(
-            -inv_l, 0.0, 0.0, inv_l, 0.0, 0.0,
-            0.0, -inv_l, 0.0, 0.0, inv_l, 0.0,
-            0.0, 0.0, na, 0.0, 0.0, nb,
-        );
-        GaussPoint {
-            e1: cos_w + cos_aw * du1 + sin_aw * du2 - 1.0,
-            e2: -sin_w - sin_aw * du1 + cos_aw * du2,
-            cos_aw,
-            sin_aw,
-            map,
+    pub fn new(length: f64, alpha: [f64; 2]) -> Element {
+        Element {
+            length,
+            alpha,
+            tangent: alpha.map(|a| {
+                let (s, c) = a.sin_cos();
+                (c, s)
+            }),
         }
     }
 
-    /// `b(u)` (integrated stretch and shear strain) and `B = db/du`.
-    fn strain_integrals(&self, ue: &Vector6) -> (Vector2<f64>, Matrix2x6, [GaussPoint; 2]) {
+    /// Exact reference tangent angle at the two Gauss points.
+    pub fn alpha(&self) -> [f64; 2] {
+        self.alpha
+    }
+
+    fn strain_integrals(&self, ue: &Vector6) -> StrainIntegrals {
         let half_l = 0.5 * self.length;
-        let gps = [self.gauss_point(0, ue), self.gauss_point(1, ue)];
-        let mut b = Vector2::zeros();
-        let mut b_mat = Matrix2x6::zeros();
-        for gp in &gps {
-            b += half_l * Vector2::new(gp.e1, gp.e2);
-            // Gradients of (e1, e2) with respect to (u1', u2', w); note de1/dw = e2 and
-            // de2/dw = -(1 + e1).
-            #[rustfmt::skip]
-            let grad = Matrix2x3::new(
-                gp.cos_aw, gp.sin_aw, gp.e2,
-                -gp.sin_aw, gp.cos_aw, -(1.0 + gp.e1),
-            );
-            b_mat += half_l * grad * gp.map;
+        let inv_l = 1.0 / self.length;
+        let du1 = (ue[3] - ue[0]) * inv_l;
+        let du2 = (ue[4] - ue[1]) * inv_l;
+        let mut out = StrainIntegrals {
+            b: [0.0; 2],
+            p1: 0.0,
+            p2: 0.0,
+            r: [0.0; 4],
+            gauss: [GaussStrain {
+                e1: 0.0,
+                e2: 0.0,
+                cos_aw: 1.0,
+                sin_aw: 0.0,
+            }; 2],
+        };
+        for (g, &(na, nb)) in SHAPE_AT_GAUSS.iter().enumerate() {
+            let w = na * ue[2] + nb * ue[5];
+            let (sin_w, cos_w) = w.sin_cos();
+            let (cos_a, sin_a) = self.tangent[g];
+            let cos_aw = cos_a * cos_w - sin_a * sin_w;
+            let sin_aw = sin_a * cos_w + cos_a * sin_w;
+            let e1 = cos_w + cos_aw * du1 + sin_aw * du2 - 1.0;
+            let e2 = -sin_w - sin_aw * du1 + cos_aw * du2;
+            out.b[0] += half_l * e1;
+            out.b[1] += half_l * e2;
+            // d(e1, e2)/d(u1', u2', w) = [[cos, sin, e2], [-sin, cos, -(1 + e1)]]; u1' = (u1b -
+            // u1a) / l carries the weight l/2 * 1/l = 1/2.
+            out.p1 += 0.5 * cos_aw;
+            out.p2 += 0.5 * sin_aw;
+            out.r[0] += half_l * e2 * na;
+            out.r[1] += half_l * e2 * nb;
+            out.r[2] -= half_l * (1.0 + e1) * na;
+            out.r[3] -= half_l * (1.0 + e1) * nb;
+            out.gauss[g] = GaussStrain {
+                e1,
+                e2,
+                cos_aw,
+                sin_aw,
+            };
         }
-        (b, b_mat, gps)
+        out
+    }
+
+    /// `S = C b / l`.
+    fn forces(&self, section: &Section, b: &[f64; 2]) -> [f64; 2] {
+        let inv_l = 1.0 / self.length;
+        [section.ea * b[0] * inv_l, section.ga * b[1] * inv_l]
     }
 
     /// The eliminated constant forces `S = (S1, S2) = C b / l` (normal and shear force).
     pub fn stress_resultants(&self, section: &Section, ue: &Vector6) -> Vector2<f64> {
-        let (b, _, _) = self.strain_integrals(ue);
-        Vector2::new(section.ea * b[0], section.ga * b[1]) / self.length
+        let s = self.forces(section, &self.strain_integrals(ue).b);
+        Vector2::new(s[0], s[1])
     }
 
     /// Strain energy `b^T C b / (2 l) + EI l k^2 / 2`.
     pub fn strain_energy(&self, section: &Section, ue: &Vector6) -> f64 {
-        let (b, _, _) = self.strain_integrals(ue);
+        let b = self.strain_integrals(ue).b;
         let kappa = (ue[5] - ue[2]) / self.length;
         0.5 * (section.ea * b[0] * b[0] + section.ga * b[1] * b[1]) / self.length
             + 0.5 * section.ei * self.length * kappa * kappa
     }
 
-    /// Internal force `B^T S + K_bend u`.
-    pub fn internal_force(&self, section: &Section, ue: &Vector6) -> Vector6 {
-        let (b, b_mat, _) = self.strain_integrals(ue);
-        let s = Vector2::new(section.ea * b[0], section.ga * b[1]) / self.length;
-        let mut f = b_mat.transpose() * s;
+    /// `f = B^T S + K_bend u` from the strain integrals.
+    fn force_from(&self, section: &Section, ue: &Vector6, si: &StrainIntegrals) -> Vector6 {
+        let s = self.forces(section, &si.b);
+        let rows = si.rows();
+        let mut f = Vector6::from_fn(|i, _| rows[0][i] * s[0] + rows[1][i] * s[1]);
         let moment = section.ei * (ue[5] - ue[2]) / self.length;
         f[2] -= moment;
         f[5] += moment;
         f
     }
 
+    /// Internal force `B^T S + K_bend u`.
+    pub fn internal_force(&self, section: &Section, ue: &Vector6) -> Vector6 {
+        self.force_from(section, ue, &self.strain_integrals(ue))
+    }
+
     /// Internal force and consistent (symmetric) tangent.
     pub fn force_and_tangent(&self, section: &Section, ue: &Vector6) -> (Vector6, Matrix6) {
+        let mut f = Vector6::zeros();
+        let mut k = Matrix6::zeros();
+        self.force_and_tangent_into(section, ue, &mut f, &mut k);
+        (f, k)
+    }
+
+    /// [`force_and_tangent`](Self::force_and_tangent) written into `f` and `k` (overwritten).
+    pub fn force_and_tangent_into(
+        &self,
+        section: &Section,
+        ue: &Vector6,
+        f: &mut Vector6,
+        k: &mut Matrix6,
+    ) {
         let half_l = 0.5 * self.length;
-        let (b, b_mat, gps) = self.strain_integrals(ue);
         let inv_l = 1.0 / self.length;
-        let s = Vector2::new(section.ea * b[0], section.ga * b[1]) * inv_l;
-        let mut f = b_mat.transpose() * s;
-        let c_over_l = nalgebra::Matrix2::new(section.ea * inv_l, 0.0, 0.0, section.ga * inv_l);
-        let mut k = b_mat.transpose() * c_over_l * b_mat;
-        for gp in &gps {
-            // S1 d2e1 + S2 d2e2 with respect to (u1', u2', w).
+        let si = self.strain_integrals(ue);
+        *f = self.force_from(section, ue, &si);
+        let s = self.forces(section, &si.b);
+        // Material part B^T (C / l) B.
+        let rows = si.rows();
+        let (ka, kg) = (section.ea * inv_l, section.ga * inv_l);
+        for j in 0..6 {
+            let (b0j, b1j) = (ka * rows[0][j], kg * rows[1][j]);
+            for i in 0..6 {
+                k[(i, j)] = rows[0][i] * b0j + rows[1][i] * b1j;
+            }
+        }
+        // Geometric part S1 b1'' + S2 b2'': per Gauss point, with respect to (u1', u2', w),
+        // [[0, 0, a], [0, 0, c], [a, c, ww]]; u1', u2' couple only with the rotations.
+        let (mut a_rot, mut c_rot, mut w_rot) = ([0.0; 2], [0.0; 2], [0.0; 3]);
+        for (gp, &(na, nb)) in si.gauss.iter().zip(&SHAPE_AT_GAUSS) {
             let a = -s[0] * gp.sin_aw - s[1] * gp.cos_aw;
             let c = s[0] * gp.cos_aw - s[1] * gp.sin_aw;
-            let ww = -s[0] * (1.0 + gp.e1) - s[1] * gp.e2;
-            #[rustfmt::skip]
-            let h = Matrix3::new(
-                0.0, 0.0, a,
-                0.0, 0.0, c,
-                a, c, ww,
-            );
-            k += half_l * gp.map.transpose() * h * gp.map;
+            let ww = half_l * (-s[0] * (1.0 + gp.e1) - s[1] * gp.e2);
+            // half_l * (1/l) = 1/2 for the u' rows.
+            a_rot[0] += 0.5 * a * na;
+            a_rot[1] += 0.5 * a * nb;
+            c_rot[0] += 0.5 * c * na;
+            c_rot[1] += 0.5 * c * nb;
+            w_rot[0] += ww * na * na;
+            w_rot[1] += ww * na * nb;
+            w_rot[2] += ww * nb * nb;
+        }
+        for (col, g) in [(2usize, 0usize), (5, 1)] {
+            for (row, sign) in [(0usize, -1.0), (3, 1.0)] {
+                k[(row, col)] += sign * a_rot[g];
+                k[(col, row)] += sign * a_rot[g];
+                k[(row + 1, col)] += sign * c_rot[g];
+                k[(col, row + 1)] += sign * c_rot[g];
+            }
         }
         let kb = section.ei * inv_l;
-        let moment = kb * (ue[5] - ue[2]);
-        f[2] -= moment;
-        f[5] += moment;
-        k[(2, 2)] += kb;
-        k[(5, 5)] += kb;
-        k[(2, 5)] -= kb;
-        k[(5, 2)] -= kb;
-        (f, k)
+        k[(2, 2)] += w_rot[0] + kb;
+        k[(5, 5)] += w_rot[2] + kb;
+        k[(2, 5)] += w_rot[1] - kb;
+        k[(5, 2)] += w_rot[1] - kb;
     }
 }
 
@@ -170,7 +262,7 @@ impl Element {
         let mut b_sum = Vector2::zeros();
         for (g, &xi) in GAUSS_POINTS.iter().enumerate() {
             let (na, nb) = shape_functions(xi);
-            let (sin_al, cos_al) = self.alpha[g].sin_cos();
+            let (cos_al, sin_al) = self.tangent[g];
             let stretch = |u: &Vector6| {
                 let x1 = cos_al + (u[3] - u[0]) * inv_l;
                 let x2 = sin_al + (u[4] - u[1]) * inv_l;
@@ -272,10 +364,7 @@ mod tests {
     #[test]
     fn tangent_and_force_are_derivatives() {
         let section = Section::rectangular(1.2e4, 0.2, 1e-6, 1.0, 1.0);
-        let el = Element {
-            length: 0.8,
-            alpha: [0.3, 0.1],
-        };
+        let el = Element::new(0.8, [0.3, 0.1]);
         let ue = Vector6::new(0.05, -0.2, 1.3, 0.4, 0.1, 2.1);
         let (f, k) = el.force_and_tangent(&section, &ue);
         let h = 1e-6;
@@ -305,10 +394,7 @@ mod tests {
     #[test]
     fn discrete_gradient_is_exact_and_invariant() {
         let section = Section::rectangular(1.2e4, 0.2, 1e-6, 1.0, 1.0);
-        let el = Element {
-            length: 0.8,
-            alpha: [0.3, 0.1],
-        };
+        let el = Element::new(0.8, [0.3, 0.1]);
         let ua = Vector6::new(0.05, -0.2, 1.3, 0.4, 0.1, 2.1);
         let ub = Vector6::new(0.09, -0.1, 1.9, 0.3, 0.3, 2.7);
         let f = el.discrete_gradient(&section, &ua, &ub);

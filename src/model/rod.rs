@@ -2,7 +2,7 @@
 //! matrices (internal force, tangent, mass, damping, loads). Global dof `3 i + k` is `u1`, `u2`,
 //! `w` (k = 0, 1, 2) of node `i`; element `e` joins nodes `e` and `e + 1`, so its six dofs are
 //! contiguous and the matrices are block tridiagonal.
-use super::element::{shape_functions, Element, ElementInertia, Vector6, GAUSS_POINTS};
+use super::element::{shape_functions, Element, ElementInertia, Matrix6, Vector6, GAUSS_POINTS};
 use super::geometry::ReferenceCurve;
 use super::section::Section;
 use crate::solver::BlockTridiagonal;
@@ -48,7 +48,7 @@ impl Rod {
                     let (_, nb) = shape_functions(xi);
                     curve.tangent_angle(node_s[e] + nb * length)
                 });
-                Element { length, alpha }
+                Element::new(length, alpha)
             })
             .collect();
         Rod {
@@ -101,10 +101,20 @@ impl Rod {
         scale: f64,
     ) {
         f.fill(0.0);
+        let (mut fe, mut ke) = (Vector6::zeros(), Matrix6::zeros());
         for (e, el) in self.elements.iter().enumerate() {
-            let (fe, ke) = el.force_and_tangent(&self.section, &Self::element_dofs(u, e));
+            el.force_and_tangent_into(&self.section, &Self::element_dofs(u, e), &mut fe, &mut ke);
             add_element_vector(f, e, &fe);
             jac.add_element(e, &ke, scale);
+        }
+    }
+
+    /// `f =` the energy-momentum discrete gradient between `ua` and `ub` (overwrites).
+    pub fn discrete_gradient(&self, ua: &[f64], ub: &[f64], f: &mut [f64]) {
+        f.fill(0.0);
+        for (e, el) in self.elements.iter().enumerate() {
+            let (a, b) = (Self::element_dofs(ua, e), Self::element_dofs(ub, e));
+            add_element_vector(f, e, &el.discrete_gradient(&self.section, &a, &b));
         }
     }
 

@@ -30,7 +30,6 @@ pub struct BlockTridiagonal {
     factored: bool,
     /// Number of pivot blocks with negative determinant (after `factor`).
     negative_pivots: usize,
-    log_abs_det: f64,
 }
 
 impl BlockTridiagonal {
@@ -42,7 +41,6 @@ impl BlockTridiagonal {
             lower: vec![Matrix3::zeros(); blocks - 1],
             factored: false,
             negative_pivots: 0,
-            log_abs_det: 0.0,
         }
     }
 
@@ -54,6 +52,15 @@ impl BlockTridiagonal {
         self.diag.iter_mut().for_each(|m| m.fill(0.0));
         self.upper.iter_mut().for_each(|m| m.fill(0.0));
         self.lower.iter_mut().for_each(|m| m.fill(0.0));
+        self.factored = false;
+    }
+
+    /// Overwrites `self` with `other` (same size), unfactored.
+    pub fn copy_from(&mut self, other: &BlockTridiagonal) {
+        debug_assert!(!other.factored);
+        self.diag.copy_from_slice(&other.diag);
+        self.upper.copy_from_slice(&other.upper);
+        self.lower.copy_from_slice(&other.lower);
         self.factored = false;
     }
 
@@ -119,7 +126,6 @@ impl BlockTridiagonal {
     pub fn factor(&mut self) -> Result<(), SingularMatrix> {
         debug_assert!(!self.factored);
         self.negative_pivots = 0;
-        self.log_abs_det = 0.0;
         for i in 0..self.blocks() {
             if i > 0 {
                 // D'_i = D_i - L_(i-1) U_(i-1), with L_(i-1) = A_(i,i-1) D'_(i-1)^-1.
@@ -127,20 +133,21 @@ impl BlockTridiagonal {
                 self.diag[i] -= l * self.upper[i - 1];
                 self.lower[i - 1] = l;
             }
-            let pivot = self.diag[i];
-            let det = pivot.determinant();
+            let (inverse, det) = inverse_and_determinant(&self.diag[i]);
             // Relative to the product of the column norms (Hadamard's bound), which is blind to
             // how differently the dofs are scaled (a slender rod's rotation columns are orders of
-            // magnitude smaller than its translation columns).
-            let bound: f64 = pivot.column_iter().map(|c| c.norm()).product();
-            if !det.is_finite() || det.abs() <= 1e-14 * bound {
+            // magnitude smaller than its translation columns). Squared: no square roots.
+            let bound: f64 = self.diag[i]
+                .column_iter()
+                .map(|c| c.norm_squared())
+                .product();
+            if !det.is_finite() || det * det <= 1e-28 * bound || !bound.is_finite() {
                 return Err(SingularMatrix { block: i });
             }
             if det < 0.0 {
                 self.negative_pivots += 1;
             }
-            self.log_abs_det += det.abs().ln();
-            self.diag[i] = pivot.try_inverse().ok_or(SingularMatrix { block: i })?;
+            self.diag[i] = inverse;
         }
         self.factored = true;
         Ok(())
@@ -186,13 +193,48 @@ impl BlockTridiagonal {
             })
             .sum()
     }
+}
 
-    /// `ln |det A|` (after factorization).
-    pub fn log_abs_determinant(&self) -> f64 {
-        self.log_abs_det
-    }
+/// The inverse by the adjugate (cofactors reused for the determinant), and the determinant.
+/// The inverse is not finite when `det` is zero; the caller tests `det` first.
+fn inverse_and_determinant(m: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
+    let c00 = m[(1, 1)] * m[(2, 2)] - m[(1, 2)] * m[(2, 1)];
+    let c01 = m[(1, 2)] * m[(2, 0)] - m[(1, 0)] * m[(2, 2)];
+    let c02 = m[(1, 0)] * m[(2, 1)] - m[(1, 1)] * m[(2, 0)];
+    let det = m[(0, 0)] * c00 + m[(0, 1)] * c01 + m[(0, 2)] * c02;
+    let inv_det = 1.0 / det;
+    #[rustfmt::skip]
+    let adjugate = Matrix3::new(
+        c00, m[(0, 2)] * m[(2, 1)] - m[(0, 1)] * m[(2, 2)], m[(0, 1)] * m[(1, 2)] - m[(0, 2)] * m[(1, 1)],
+        c01, m[(0, 0)] * m[(2, 2)] - m[(0, 2)] * m[(2, 0)], m[(0, 2)] * m[(1, 0)] - m[(0, 0)] * m[(1, 2)],
+        c02, m[(0, 1)] * m[(2, 0)] - m[(0, 0)] * m[(2, 1)], m[(0, 0)] * m[(1, 1)] - m[(0, 1)] * m[(1, 0)],
+    );
+    (adjugate * inv_det, det)
 }
 
 fn block(x: &[f64], i: usize) -> Vector3<f64> {
     Vector3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn adjugate_inverse_matches_nalgebra() {
+        let m = Matrix3::new(4.0, -1.5, 0.3, 2.0, 7.0, -0.25, 1e-3, 0.5, 3e-4);
+        let (inverse, det) = inverse_and_determinant(&m);
+        assert!((det - m.determinant()).abs() <= 1e-14 * det.abs());
+        let reference = m.try_inverse().unwrap();
+        assert!((inverse - reference).norm() <= 1e-13 * reference.norm());
+        assert!((inverse * m - Matrix3::identity()).norm() <= 1e-13);
+    }
+
+    #[test]
+    fn singular_pivot_is_reported() {
+        let mut a = BlockTridiagonal::new(2);
+        a.diag[0] = Matrix3::identity();
+        a.diag[1] = Matrix3::new(1.0, 2.0, 3.0, 2.0, 4.0, 6.0, 0.0, 1.0, 1.0);
+        assert_eq!(a.factor(), Err(SingularMatrix { block: 1 }));
+    }
 }
