@@ -1,6 +1,7 @@
-//! Cost of the midpoint rule against the number of elements: prints microseconds per Newton
-//! iteration and per time step for 10 to 10,000 elements, and the ratio between consecutive sizes
-//! (10x more elements should cost about 10x: linear, block-tridiagonal work).
+//! Cost of the midpoint rule against the number of elements: prints microseconds per time step
+//! (and per step and element) for 10 to 10,000 elements, the corrections (Newton and chord) and
+//! factorizations per step, and the ratio between consecutive sizes (10x more elements should
+//! cost about 10x: linear, block-tridiagonal work).
 //!
 //! Run: `cargo bench --bench scaling` (release profile). Each size runs the BuckledBeam with the
 //! default excitation from its static buckled state, with steps of 1e-6 s, for about one second.
@@ -8,6 +9,7 @@ use georod::scene::{SceneKind, SceneParams};
 use georod::simulation::Simulation;
 use std::time::Instant;
 
+/// (us per step, corrections per step, factorizations per step)
 fn measure(elements: usize) -> (f64, f64, f64) {
     let params = SceneParams::with(
         SceneKind::BuckledBeam,
@@ -20,34 +22,38 @@ fn measure(elements: usize) -> (f64, f64, f64) {
     let mut steps = 1usize;
     loop {
         let start = Instant::now();
-        let mut iterations = 0u64;
+        let (mut corrections, mut factorizations) = (0u64, 0u64);
         for _ in 0..steps {
-            iterations += sim.advance(1e-6, 0.0).expect("step").newton_iterations as u64;
+            let report = sim.advance(1e-6, 0.0).expect("step");
+            corrections += report.newton_iterations as u64;
+            factorizations += report.factorizations as u64;
         }
         let seconds = start.elapsed().as_secs_f64();
         if seconds > 1.0 || steps >= 1 << 22 {
-            let per_step = 1e6 * seconds / steps as f64;
-            let per_iteration = 1e6 * seconds / iterations as f64;
-            return (per_iteration, per_step, iterations as f64 / steps as f64);
+            return (
+                1e6 * seconds / steps as f64,
+                corrections as f64 / steps as f64,
+                factorizations as f64 / steps as f64,
+            );
         }
         steps *= if seconds < 0.05 { 10 } else { 2 };
     }
 }
 
 fn main() {
-    println!("| elements | us / Newton iteration | us / time step | iterations / step | ratio (iteration) | ratio (step) |");
+    println!("| elements | us / time step | us / step / element | corrections / step | factorizations / step | ratio (step) |");
     println!("|---:|---:|---:|---:|---:|---:|");
-    let mut previous: Option<(f64, f64)> = None;
+    let mut previous: Option<f64> = None;
     for elements in [10, 100, 1000, 10000] {
-        let (per_iteration, per_step, its) = measure(elements);
+        let (per_step, corrections, factorizations) = measure(elements);
+        let per_element = per_step / elements as f64;
         let ratio = |now: f64, before: Option<f64>| {
             before.map_or("".to_string(), |b| format!("{:.2}", now / b))
         };
         println!(
-            "| {elements} | {per_iteration:.2} | {per_step:.2} | {its:.2} | {} | {} |",
-            ratio(per_iteration, previous.map(|p| p.0)),
-            ratio(per_step, previous.map(|p| p.1)),
+            "| {elements} | {per_step:.2} | {per_element:.3} | {corrections:.2} | {factorizations:.2} | {} |",
+            ratio(per_step, previous),
         );
-        previous = Some((per_iteration, per_step));
+        previous = Some(per_step);
     }
 }

@@ -107,7 +107,10 @@ pub struct EnergyLedger {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AdvanceReport {
     pub substeps: usize,
+    /// Corrections (Newton and chord) summed over the sub-steps.
     pub newton_iterations: u32,
+    /// Jacobians factored, summed over the sub-steps.
+    pub factorizations: u32,
     /// How many times the sub-step was halved after a Newton failure.
     pub cuts: u32,
 }
@@ -421,7 +424,7 @@ impl Simulation {
         let mut last_failure = None;
         for cuts in 0..=MAX_STEP_CUTS {
             match self.try_substeps(h, substeps) {
-                Ok(newton_iterations) => {
+                Ok((newton_iterations, factorizations)) => {
                     std::mem::swap(&mut self.state, &mut self.trial);
                     self.energy = self.trial_energy;
                     self.clock = self.clock.with_step(h / substeps as f64);
@@ -430,6 +433,7 @@ impl Simulation {
                     return Ok(AdvanceReport {
                         substeps,
                         newton_iterations,
+                        factorizations,
                         cuts,
                     });
                 }
@@ -447,21 +451,23 @@ impl Simulation {
         })
     }
 
-    fn try_substeps(&mut self, h: f64, substeps: usize) -> Result<u32, NewtonFailure> {
+    /// Returns the corrections and the factorizations summed over the sub-steps.
+    fn try_substeps(&mut self, h: f64, substeps: usize) -> Result<(u32, u32), NewtonFailure> {
         self.trial.copy_from(&self.state);
         self.trial_energy = self.energy;
         let dt = h / substeps as f64;
         let clock = self.clock.with_step(dt);
-        let mut iterations = 0;
+        let (mut iterations, mut factorizations) = (0, 0);
         for k in 0..substeps {
             let t_k = clock.at(k as u64);
             let stats = self
                 .integrator
                 .step(&self.rod, &self.loads, &mut self.trial, t_k, dt)?;
             iterations += stats.iterations;
+            factorizations += stats.factorizations;
             self.book_energy(t_k + 0.5 * dt, dt);
         }
-        Ok(iterations)
+        Ok((iterations, factorizations))
     }
 
     /// Adds the work and dissipation of the sub-step just taken to the trial ledger.

@@ -143,9 +143,10 @@ class FmuBeam:
         self.slave.setFMUstate(self.state0)
         return float(self.slave.getReal(self.vr_w)[0])
 
-    def integrate(self, steps: int) -> tuple[np.ndarray, float, int]:
+    def integrate(self, steps: int, count_newton: bool = False) -> tuple[np.ndarray, float, int]:
         """`steps` communication steps from the initial state; returns w_mid at every
-        communication point, the loop's wall time and the total Newton iterations."""
+        communication point, the loop's wall time and (with `count_newton`, which adds one
+        `fmi2GetInteger` per step to the loop) the total Newton corrections."""
         slave, h, vr, vrn = self.slave, self.h, self.vr_w, self.vr_newton
         slave.setFMUstate(self.state0)
         w = np.empty(steps + 1)
@@ -153,19 +154,26 @@ class FmuBeam:
         newton = 0
         do_step, get_real, get_integer = slave.doStep, slave.getReal, slave.getInteger
         t0 = time.perf_counter()
-        for k in range(steps):
-            do_step(k * h, h)
-            w[k + 1] = get_real(vr)[0]
-            newton += get_integer(vrn)[0]
+        if count_newton:
+            for k in range(steps):
+                do_step(k * h, h)
+                w[k + 1] = get_real(vr)[0]
+                newton += get_integer(vrn)[0]
+        else:
+            for k in range(steps):
+                do_step(k * h, h)
+                w[k + 1] = get_real(vr)[0]
         seconds = time.perf_counter() - t0
         return w, seconds, newton
 
     def run(self, steps: int, repeats: int) -> Run:
+        """One untimed run that counts the Newton corrections (instrumentation, like Exudyn's
+        sensor run), then `repeats` timed runs of `fmi2DoStep` + `fmi2GetReal(w_mid)`."""
+        _, _, newton = self.integrate(steps, count_newton=True)
         times: list[float] = []
         w = np.empty(0)
-        newton = 0
         for _ in range(max(1, repeats)):
-            w, s, newton = self.integrate(steps)
+            w, s, _ = self.integrate(steps)
             times.append(s)
         return Run(w, statistics.median(times), times, {"newton": float(newton)})
 
@@ -938,11 +946,11 @@ def study_scaling(scene: BeamScene, s: Settings, fmu: Path | None, log: Log) -> 
         t0 = time.perf_counter()
         with fmu_beam(scene, ne, scene.period / n * (1 + 1e-9), n, fmu) as beam:
             t_init = time.perf_counter() - t0
-            # one untimed period first (transient of the Newton iteration counts), then timed
-            beam.integrate(n)
+            # one untimed period first (it also counts the Newton corrections), then timed
+            _, _, newton_count = beam.integrate(n, count_newton=True)
             reps = [beam.integrate(n * periods) for _ in range(3 if ne <= 1000 else 1)]
         secs = statistics.median(x[1] for x in reps)
-        newton = reps[0][2] / (n * periods)
+        newton = newton_count / n
         rows.append(
             {
                 "elements": ne,
@@ -1118,17 +1126,23 @@ def run_benchmark(
                     rows, figures / f"{prefix}work_precision_{which.split('_')[1]}.png", which
                 )
             )
-            fm = [(float(r[which]), float(r["seconds"])) for r in rows if r["method"] == "fmu"]
             ex = [(float(r[which]), float(r["seconds"])) for r in rows if r["method"] == "exudyn"]
-            ratios = equal_error_ratio(fm, ex)
-            if ratios:
+            for method in dict.fromkeys(str(r["method"]) for r in rows if r["method"] != "exudyn"):
+                fm = [(float(r[which]), float(r["seconds"])) for r in rows if r["method"] == method]
+                ratios = equal_error_ratio(fm, ex)
+                if not ratios:
+                    continue
                 rep.add(
-                    f"Run-time ratio Exudyn / FMU at equal error ({which})",
+                    f"Run-time ratio Exudyn / {method} at equal error ({which})",
                     _md_table(
-                        ["error", "FMU s", "Exudyn s (interp.)", "ratio"], [list(r) for r in ratios]
+                        ["error", f"{method} s", "Exudyn s (interp.)", "ratio"],
+                        [list(r) for r in ratios],
                     ),
                 )
-                log(f"ratio at equal {which}: " + ", ".join(f"{r[3]:.1f}" for r in ratios))
+                log(
+                    f"ratio Exudyn / {method} at equal {which}: "
+                    + ", ".join(f"{r[3]:.1f}" for r in ratios)
+                )
     if "models" in parts:
         mrows = study_models(scene, s, fmu, use_exudyn, log)
         rep.files.append(_write_csv(out / "models.csv", mrows))

@@ -138,15 +138,22 @@ fn run(args: &[String]) -> Result<(), String> {
             let dt = o.step.ok_or("bench-steps needs --dt")?;
             let steps = o.steps.ok_or("bench-steps needs --steps")?;
             let mut sim = simulation(&o)?;
+            let (mut corrections, mut factorizations) = (0u64, 0u64);
             let start = Instant::now();
             for _ in 0..steps {
-                sim.advance(dt, 0.0).map_err(|e| e.to_string())?;
+                let report = sim.advance(dt, 0.0).map_err(|e| e.to_string())?;
+                corrections += u64::from(report.newton_iterations);
+                factorizations += u64::from(report.factorizations);
             }
             let seconds = start.elapsed().as_secs_f64();
             println!("{seconds:.6}");
+            let per_step = |x: u64| x as f64 / steps as f64;
             eprintln!(
-                "{steps} steps of {dt} s: {seconds:.4} s, {:.2} us/step",
-                1e6 * seconds / steps as f64
+                "{steps} steps of {dt} s: {seconds:.4} s, {:.2} us/step, {:.2} corrections and \
+                 {:.2} factorizations per step",
+                1e6 * seconds / steps as f64,
+                per_step(corrections),
+                per_step(factorizations)
             );
         }
         "path" => {
