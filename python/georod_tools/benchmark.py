@@ -1102,7 +1102,7 @@ def run_benchmark(
                     "err final",
                     "err max",
                     "seconds",
-                    "Newton/step",
+                    "corrections/step",
                     "core s",
                 ],
                 [
