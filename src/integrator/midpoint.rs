@@ -104,7 +104,8 @@ impl Midpoint {
         }
     }
 
-    /// One step of size `dt` from `t_n`. On failure `state` is untouched.
+    /// One step of size `dt` from `t_n`. On failure `state` is untouched. `rod` must be the rod
+    /// given to [`Midpoint::new`] (its mass and damping are cached per step size).
     ///
     /// Newton with the exact Jacobian; after each Newton correction the next residual is first
     /// solved with the same factorization (a chord correction: a residual evaluation and two
@@ -125,6 +126,11 @@ impl Midpoint {
         t_n: f64,
         dt: f64,
     ) -> Result<NewtonStats, NewtonFailure> {
+        debug_assert_eq!(
+            rod.dofs(),
+            self.du.len(),
+            "a Midpoint serves the rod it was made for"
+        );
         let t_mid = t_n + 0.5 * dt;
         if self.dynamic_dt != dt {
             self.dynamic_part.set_zero();
