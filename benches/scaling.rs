@@ -5,26 +5,27 @@
 //!
 //! Run: `cargo bench --bench scaling` (release profile). Each size runs the BuckledBeam with the
 //! default excitation from its static buckled state, with steps of 1e-6 s, for about one second.
-use georod::scene::{SceneKind, SceneParams};
+use georod::scene::Scene;
 use georod::simulation::Simulation;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// (us per step, corrections per step, factorizations per step)
 fn measure(elements: usize) -> (f64, f64, f64) {
-    let params = SceneParams::with(
-        SceneKind::BuckledBeam,
-        [("elements", elements as f64), ("dt_max", 1e-6)],
-    )
-    .expect("valid parameters");
-    let mut sim = Simulation::new(params).expect("initial state");
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/BuckledBeam.toml");
+    let scene = Arc::new(Scene::load(path).expect("scene file"));
+    let values = scene
+        .values_with([("elements", elements as f64), ("dt_max", 1e-6)])
+        .expect("valid parameters");
+    let mut sim = Simulation::new(scene, values).expect("initial state");
     // Warm up, then time enough steps for about a second.
-    sim.advance(1e-6, 0.0).expect("step");
+    sim.advance(1e-6).expect("step");
     let mut steps = 1usize;
     loop {
         let start = Instant::now();
         let (mut corrections, mut factorizations) = (0u64, 0u64);
         for _ in 0..steps {
-            let report = sim.advance(1e-6, 0.0).expect("step");
+            let report = sim.advance(1e-6).expect("step");
             corrections += report.newton_iterations as u64;
             factorizations += report.factorizations as u64;
         }

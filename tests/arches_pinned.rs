@@ -11,16 +11,19 @@ use georod::integrator::continuation::{
 };
 use georod::model::modal::modes;
 use georod::model::rod::U2;
-use georod::scene::{SceneKind, SceneParams};
-use georod::simulation::{build_rod, Simulation};
+mod common;
+
+use common::{output, simulation};
 
 /// z1, z2, z3 in order of decreasing midspan deflection.
-fn zero_load_equilibria(params: &SceneParams) -> (georod::model::Rod, Vec<(f64, Equilibrium)>) {
-    let (rod, _) = build_rod(params);
+fn zero_load_equilibria() -> (georod::model::Rod, Vec<(f64, Equilibrium)>) {
+    let sim = simulation("PinnedArch", &[]);
+    let rise = common::param(&sim, "H");
+    let rod = sim.rod().clone();
     let mut q = vec![0.0; rod.dofs()];
     rod.add_point_transverse_load(&mut q, rod.midspan(), 1.0);
     let mut settings = ContinuationSettings::for_rod(&rod, 50.0);
-    settings.max_displacement = 4.0 * params.rise;
+    settings.max_displacement = 4.0 * rise;
     let (path, _) = follow_both_ways(&rod, &vec![0.0; rod.dofs()], 0.0, &q, &settings);
     let mid = rod.midspan();
     let mut eq: Vec<(f64, Equilibrium)> = equilibria_at_load(&rod, &q, &path, 0.0, &settings)
@@ -35,8 +38,8 @@ fn zero_load_equilibria(params: &SceneParams) -> (georod::model::Rod, Vec<(f64, 
 /// Damped free motion from `u` with a disturbance velocity `v_mid0` (the crown node's `u2`
 /// velocity and, to break the symmetry, a quarter of it at the quarter-span node); returns
 /// `w_mid` after `duration`.
-fn release(params: &SceneParams, u: &[f64], v_crown: f64, duration: f64) -> f64 {
-    let mut sim = Simulation::new(params.clone()).expect("simulation");
+fn release(u: &[f64], v_crown: f64, duration: f64) -> f64 {
+    let mut sim = simulation("PinnedArch", &[]);
     let mut s = sim.snapshot();
     s.displacements.copy_from_slice(u);
     let nodes = s.velocities.len() / 3;
@@ -45,15 +48,14 @@ fn release(params: &SceneParams, u: &[f64], v_crown: f64, duration: f64) -> f64 
     sim.restore(&s).expect("restore");
     let h = 1e-3;
     for _ in 0..(duration / h).round() as usize {
-        sim.advance(h, 0.0).expect("step");
+        sim.advance(h).expect("step");
     }
-    sim.outputs().w_mid
+    output(&sim, "w_mid")
 }
 
 #[test]
 fn pinned_arch_equilibria_stability_and_return() {
-    let params = SceneParams::defaults(SceneKind::PinnedArch);
-    let (rod, eq) = zero_load_equilibria(&params);
+    let (rod, eq) = zero_load_equilibria();
     let ws: Vec<f64> = eq.iter().map(|e| e.0).collect();
     let negative: Vec<usize> = eq.iter().map(|e| e.1.negative_eigenvalues).collect();
     println!("PinnedArch zero-load equilibria: w_mid = {ws:?}, negative eigenvalues {negative:?}");
@@ -78,7 +80,7 @@ fn pinned_arch_equilibria_stability_and_return() {
     let disturbance = 20.0;
     for (k, sign) in [(0, 1.0), (0, -1.0), (2, 1.0), (2, -1.0)] {
         let (w0, e) = &eq[k];
-        let w = release(&params, &e.u, sign * disturbance, 0.1);
+        let w = release(&e.u, sign * disturbance, 0.1);
         println!(
             "  from z{} ({w0:.4}) disturbed by {:+}: w_mid = {w:.6} after 0.1 s",
             k + 1,
@@ -88,7 +90,7 @@ fn pinned_arch_equilibria_stability_and_return() {
     }
     for sign in [1.0, -1.0] {
         let (w0, e) = &eq[1];
-        let w = release(&params, &e.u, sign * disturbance, 0.1);
+        let w = release(&e.u, sign * disturbance, 0.1);
         println!(
             "  from z2 ({w0:.4}) disturbed by {:+}: w_mid = {w:.6} after 0.1 s",
             sign * disturbance

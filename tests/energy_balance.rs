@@ -1,29 +1,24 @@
 //! Energy bookkeeping of a forced, damped, controlled run: `E_kin + E_strain - E(0) - W_ext -
 //! W_ctrl + E_damped` is round-off for the energy-momentum scheme (it balances each step
 //! exactly) and second order in the step for the midpoint rule; both schemes are second order.
-use georod::scene::{SceneKind, SceneParams};
-use georod::simulation::Simulation;
+mod common;
+
+use common::{output, param, set_input, simulation};
 
 /// The largest |energy balance error| over 10 forcing periods, relative to the largest energy
 /// exchanged (the work of the excitation), for a chaotic buckled-beam case with control.
 fn balance_error(integrator: f64, dt_max: f64) -> f64 {
-    let params = SceneParams::with(
-        SceneKind::BuckledBeam,
-        [("F", 1.5), ("integrator", integrator), ("dt_max", dt_max)],
-    )
-    .unwrap();
-    let period = 2.0 * std::f64::consts::PI / params.forcing_frequency;
-    let mut sim = Simulation::new(params).unwrap();
+    let overrides = [("F", 1.5), ("integrator", integrator), ("dt_max", dt_max)];
+    let mut sim = simulation("BuckledBeam", &overrides);
+    let period = 2.0 * std::f64::consts::PI / param(&sim, "Omega");
     let (mut worst, mut scale) = (0.0f64, 0.0f64);
     for k in 0..500 {
-        let f_ctrl = 0.05 * (k as f64 * 0.1).sin();
-        sim.advance(period / 50.0, f_ctrl).unwrap();
-        let o = sim.outputs();
-        worst = worst.max(o.energy_error.abs());
-        scale = scale
-            .max(o.energy.external_work.abs())
-            .max(o.energy.dissipated);
-        assert!(o.energy.dissipated >= 0.0);
+        set_input(&mut sim, "f_ctrl", 0.05 * (k as f64 * 0.1).sin());
+        sim.advance(period / 50.0).unwrap();
+        let e = *sim.energy();
+        worst = worst.max(sim.energy_error().abs());
+        scale = scale.max(e.external_work.abs()).max(e.dissipated);
+        assert!(e.dissipated >= 0.0);
     }
     assert!(scale > 0.0);
     worst / scale
@@ -54,15 +49,11 @@ fn midpoint_balance_error_is_second_order() {
 
 /// `w_mid` after one forcing period of the periodic BuckledBeam case F = 0.4 with sub-step `dt`.
 fn w_mid_after(integrator: f64, dt_max: f64) -> f64 {
-    let params = SceneParams::with(
-        SceneKind::BuckledBeam,
-        [("F", 0.4), ("integrator", integrator), ("dt_max", dt_max)],
-    )
-    .unwrap();
-    let period = 2.0 * std::f64::consts::PI / params.forcing_frequency;
-    let mut sim = Simulation::new(params).unwrap();
-    sim.advance(period, 0.0).unwrap();
-    sim.outputs().w_mid
+    let overrides = [("F", 0.4), ("integrator", integrator), ("dt_max", dt_max)];
+    let mut sim = simulation("BuckledBeam", &overrides);
+    let period = 2.0 * std::f64::consts::PI / param(&sim, "Omega");
+    sim.advance(period).unwrap();
+    output(&sim, "w_mid")
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! large elastic wobble: total energy, linear and angular momentum are conserved to solver
 //! tolerance; the midpoint rule conserves both momenta but not the energy.
 use georod::integrator::{DynamicState, Midpoint, Scheme};
-use georod::model::{ExcitationKind, LoadCase, ReferenceCurve, Rod, Section};
+use georod::model::{LoadSet, ReferenceCurve, Rod, Section};
 
 fn spinning_rod() -> (Rod, DynamicState) {
     let section = Section::rectangular(1.2e4, 0.2, 1e-6, 1.0, 1.0);
@@ -25,7 +25,7 @@ fn spinning_rod() -> (Rod, DynamicState) {
 /// Newton failed, if it did.
 fn run(scheme: Scheme, steps: usize, dt: f64) -> (f64, f64, f64, Option<usize>) {
     let (rod, mut state) = spinning_rod();
-    let loads = LoadCase::new(&rod, ExcitationKind::Distributed);
+    let loads = LoadSet::new(&rod, &[]);
     let mut integrator = Midpoint::new(&rod);
     integrator.scheme = scheme;
     let energy = |s: &DynamicState| rod.kinetic_energy(&s.v) + rod.strain_energy(&s.u);
@@ -36,7 +36,7 @@ fn run(scheme: Scheme, steps: usize, dt: f64) -> (f64, f64, f64, Option<usize>) 
     );
     let (mut de, mut dp, mut dl) = (0.0f64, 0.0f64, 0.0f64);
     for k in 0..steps {
-        if let Err(e) = integrator.step(&rod, &loads, &mut state, k as f64 * dt, dt) {
+        if let Err(e) = integrator.step(&rod, &loads, &mut state, k as f64 * dt, dt, &[]) {
             let e_now = energy(&state);
             println!("{scheme:?}: step {k} failed: {e} (energy {e_now:.3e}, {e0:.3e} at start)");
             return (de, dp, dl, Some(k));

@@ -18,14 +18,99 @@
 
 use georod::fmi::api::*;
 use georod::fmi::types::*;
-use georod::variables::{vr, GUIDS};
 use std::cell::RefCell;
 use std::ffi::{c_void, CStr, CString};
 use std::os::raw::c_char;
 use std::ptr::{null, null_mut};
+use std::sync::OnceLock;
 
 const BEAM: usize = 0;
 const PINNED: usize = 1;
+const SCENES: [&str; 3] = ["BuckledBeam", "PinnedArch", "ClampedArch"];
+
+/// Value references of the paper scenes' variables (checked against the scene files by
+/// `value_references_match_the_scene_files`).
+mod vr {
+    pub const E: u32 = 0;
+    pub const nu: u32 = 1;
+    pub const d: u32 = 3;
+    pub const L: u32 = 6;
+    pub const elements: u32 = 7;
+    pub const dt_max: u32 = 8;
+    pub const F: u32 = 9;
+    pub const Omega: u32 = 10;
+    pub const well: u32 = 12;
+    pub const H: u32 = 13;
+    pub const pre_shortening: u32 = 100;
+    pub const f_ctrl: u32 = 1000;
+    pub const E_kin: u32 = 32;
+    pub const E_strain: u32 = 33;
+    pub const newton_iterations: u32 = 34;
+    pub const w_mid: u32 = 2000;
+    pub const v_mid: u32 = 2001;
+}
+
+/// The unzipped resources of each scene's FMU (the scene file as `scene.toml`) and its GUID:
+/// `(guid, file: URI of the folder)`, made once per test process.
+fn resources(scene: usize) -> (CString, CString) {
+    static MADE: OnceLock<Vec<(String, String)>> = OnceLock::new();
+    let made = MADE.get_or_init(|| {
+        let root = std::env::temp_dir().join(format!("georod fmi_api {}", std::process::id()));
+        SCENES
+            .iter()
+            .map(|name| {
+                let dir = root.join(name).join("resources");
+                std::fs::create_dir_all(&dir).unwrap();
+                let source = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+                let scene = georod::scene::Scene::load(&source).unwrap();
+                std::fs::write(dir.join("scene.toml"), &scene.source).unwrap();
+                let guid = georod::packaging::model_description::model_description(&scene).guid;
+                let uri = format!("file://{}", dir.display()).replace(' ', "%20");
+                (guid, uri)
+            })
+            .collect()
+    });
+    let (guid, uri) = &made[scene];
+    (
+        CString::new(guid.as_str()).unwrap(),
+        CString::new(uri.as_str()).unwrap(),
+    )
+}
+
+#[test]
+fn value_references_match_the_scene_files() {
+    for name in SCENES {
+        let scene = georod::scene::Scene::load(format!(
+            "{}/scenes/{name}.toml",
+            env!("CARGO_MANIFEST_DIR")
+        ))
+        .unwrap();
+        let vars = georod::scene::variables::variables(&scene);
+        let vr_of = |n: &str| vars.iter().find(|v| v.name == n).map(|v| v.vr);
+        for (n, vr) in [
+            ("E", vr::E),
+            ("nu", vr::nu),
+            ("d", vr::d),
+            ("L", vr::L),
+            ("elements", vr::elements),
+            ("dt_max", vr::dt_max),
+            ("F", vr::F),
+            ("Omega", vr::Omega),
+            ("f_ctrl", vr::f_ctrl),
+            ("E_kin", vr::E_kin),
+            ("E_strain", vr::E_strain),
+            ("newton_iterations", vr::newton_iterations),
+            ("w_mid", vr::w_mid),
+            ("v_mid", vr::v_mid),
+        ] {
+            assert_eq!(vr_of(n), Some(vr), "{name}: {n}");
+        }
+        let beam = name == "BuckledBeam";
+        assert_eq!(vr_of("well"), beam.then_some(vr::well));
+        assert_eq!(vr_of("pre_shortening"), beam.then_some(vr::pre_shortening));
+        assert_eq!(vr_of("H"), (!beam).then_some(vr::H));
+    }
+}
 
 #[derive(Clone, Debug)]
 struct Msg {
@@ -117,13 +202,13 @@ impl Fmu {
         let log: Box<Log> = Box::default();
         let cb = callbacks(&*log as *const Log as *mut c_void);
         let name = CString::new(name).unwrap();
-        let guid = CString::new(GUIDS[scene]).unwrap();
+        let (guid, uri) = resources(scene);
         let c = unsafe {
             fmi2Instantiate(
                 name.as_ptr(),
                 fmi2CoSimulation,
                 guid.as_ptr(),
-                c"file:///tmp/georod%20test/resources".as_ptr(),
+                uri.as_ptr(),
                 &*cb,
                 fmi2False,
                 logging_on as fmi2Boolean,
@@ -335,9 +420,12 @@ fn arch_scenes_run() {
     assert_eq!(fmu.real(vr::H), 2.5);
     run(&fmu, 3);
     // The beam's parameters do not exist here.
-    let mut x = 0.0;
-    let s = unsafe { fmi2GetReal(fmu.c, &vr::pre_shortening, 1, &mut x) };
-    fmu.expect_error(s, &["`pre_shortening`", "not a variable of the PinnedArch"]);
+    let mut i = 0;
+    let s = unsafe { fmi2GetInteger(fmu.c, &vr::well, 1, &mut i) };
+    fmu.expect_error(
+        s,
+        &["value reference 12", "not a variable of the PinnedArch"],
+    );
 }
 
 #[test]
@@ -557,10 +645,14 @@ fn exit_initialization_failure_enters_the_error_state() {
     let fmu = Fmu::new(BEAM);
     unsafe {
         assert_eq!(fmi2EnterInitializationMode(fmu.c), fmi2Status::OK);
-        // In range on its own, but not below L/2: caught by validate() at exit.
+        // In range on its own, but more than half the span: no buckled equilibrium in the
+        // well, found at exit.
         assert_eq!(fmu.set_real(vr::pre_shortening, 6.0), fmi2Status::OK);
         let s = fmi2ExitInitializationMode(fmu.c);
-        fmu.expect_error(s, &["`pre_shortening`", "[0, L/2)", "error state"]);
+        fmu.expect_error(
+            s,
+            &["initial static state not found", "well", "error state"],
+        );
         fmu.expect_error(
             fmi2DoStep(fmu.c, 0.0, H, fmi2True),
             &["fmi2DoStep", "state error"],
@@ -677,20 +769,22 @@ fn null_and_garbage_pointers() {
 
 // ----- instantiation --------------------------------------------------------------------------
 
+/// Instantiates with the BuckledBeam's resources.
 unsafe fn instantiate(
     name: *const c_char,
     ty: fmi2Type,
     guid: *const c_char,
     cb: *const fmi2CallbackFunctions,
 ) -> fmi2Component {
-    fmi2Instantiate(name, ty, guid, null(), cb, fmi2False, fmi2False)
+    let (_, uri) = resources(BEAM);
+    fmi2Instantiate(name, ty, guid, uri.as_ptr(), cb, fmi2False, fmi2False)
 }
 
 #[test]
 fn refused_instantiations() {
     let log: Box<Log> = Box::default();
     let cb = callbacks(&*log as *const Log as *mut c_void);
-    let guid = CString::new(GUIDS[BEAM]).unwrap();
+    let (guid, _) = resources(BEAM);
     let last = || log.borrow().last().unwrap().text.clone();
     unsafe {
         assert!(instantiate(
@@ -701,10 +795,14 @@ fn refused_instantiations() {
         )
         .is_null());
         assert!(
-            last().contains("{no-such-guid}") && last().contains("matches none"),
+            last().contains("{no-such-guid}") && last().contains("does not match"),
             "{}",
             last()
         );
+        // Another scene's GUID with these resources: refused the same way.
+        let (other, _) = resources(PINNED);
+        assert!(instantiate(c"x".as_ptr(), fmi2CoSimulation, other.as_ptr(), &*cb).is_null());
+        assert!(last().contains("does not match"), "{}", last());
         assert!(instantiate(c"x".as_ptr(), fmi2ModelExchange, guid.as_ptr(), &*cb).is_null());
         assert!(last().contains("Co-Simulation"), "{}", last());
         assert!(instantiate(c"x".as_ptr(), 7, guid.as_ptr(), &*cb).is_null());
@@ -735,7 +833,7 @@ fn refused_instantiations() {
 
 #[test]
 fn every_scene_has_its_guid() {
-    for scene in 0..GUIDS.len() {
+    for scene in 0..SCENES.len() {
         let fmu = Fmu::new(scene);
         let mut elements = 0;
         assert_eq!(
@@ -747,16 +845,28 @@ fn every_scene_has_its_guid() {
 
 #[test]
 fn resource_locations() {
-    let guid = CString::new(GUIDS[BEAM]).unwrap();
-    for loc in [
-        c"file:///tmp/a%20b".as_ptr(),
-        c"file:/tmp/x".as_ptr(),
-        c"http://h/x".as_ptr(),
-        null(),
-    ] {
-        let log: Box<Log> = Box::default();
-        let cb = callbacks(&*log as *const Log as *mut c_void);
-        let c = unsafe {
+    let (guid, uri) = resources(BEAM);
+    let uri = uri.to_str().unwrap();
+    let path = uri.strip_prefix("file://").unwrap();
+    let good = [
+        uri.to_string(),
+        format!("file:{path}"),
+        format!("file://localhost{path}"),
+        format!("{uri}/"),
+    ];
+    let empty = std::env::temp_dir().join(format!("georod fmi_api empty {}", std::process::id()));
+    std::fs::create_dir_all(&empty).unwrap();
+    let bad = [
+        ("http://h/x".to_string(), "not a file: URI"),
+        ("file://remote/x".to_string(), "remote host"),
+        (
+            format!("file://{}", empty.display()).replace(' ', "%20"),
+            "scene.toml",
+        ),
+    ];
+    let instantiate = |loc: *const c_char, log: &Log| {
+        let cb = callbacks(log as *const Log as *mut c_void);
+        unsafe {
             fmi2Instantiate(
                 c"r".as_ptr(),
                 fmi2CoSimulation,
@@ -766,12 +876,76 @@ fn resource_locations() {
                 0,
                 0,
             )
-        };
-        assert!(
-            !c.is_null(),
-            "an unusable resource location is only a warning"
-        );
+        }
+    };
+    for loc in good {
+        let log: Log = RefCell::default();
+        let c = instantiate(CString::new(loc.clone()).unwrap().as_ptr(), &log);
+        assert!(!c.is_null(), "{loc}: {:?}", log.borrow());
         unsafe { fmi2FreeInstance(c) };
+    }
+    for (loc, why) in bad {
+        let log: Log = RefCell::default();
+        let c = instantiate(CString::new(loc.clone()).unwrap().as_ptr(), &log);
+        assert!(c.is_null(), "{loc} accepted");
+        let text = log.borrow().last().unwrap().text.clone();
+        assert!(text.contains(why), "{loc}: {text}");
+    }
+    let log: Log = RefCell::default();
+    assert!(instantiate(null(), &log).is_null(), "no resources: refused");
+    assert!(log
+        .borrow()
+        .last()
+        .unwrap()
+        .text
+        .contains("fmuResourceLocation"));
+}
+
+#[test]
+fn altered_resources_are_refused() {
+    let (guid, uri) = resources(BEAM);
+    let dir = std::env::temp_dir().join(format!("georod fmi_api altered {}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let original = std::fs::read_to_string(
+        uri.to_str()
+            .unwrap()
+            .strip_prefix("file://")
+            .unwrap()
+            .replace("%20", " ")
+            + "/scene.toml",
+    )
+    .unwrap();
+    let altered_uri =
+        CString::new(format!("file://{}", dir.display()).replace(' ', "%20")).unwrap();
+    for (what, text, why) in [
+        (
+            "a changed value",
+            original.replace("L = 10.0", "L = 11.0"),
+            "does not match the GUID",
+        ),
+        (
+            "a broken file",
+            original.replace("[geometry]", "[geometry"),
+            "cannot be used",
+        ),
+    ] {
+        std::fs::write(dir.join("scene.toml"), &text).unwrap();
+        let log: Log = RefCell::default();
+        let cb = callbacks(&log as *const Log as *mut c_void);
+        let c = unsafe {
+            fmi2Instantiate(
+                c"a".as_ptr(),
+                fmi2CoSimulation,
+                guid.as_ptr(),
+                altered_uri.as_ptr(),
+                &*cb,
+                0,
+                0,
+            )
+        };
+        assert!(c.is_null(), "{what}: accepted");
+        let text = log.borrow().last().unwrap().text.clone();
+        assert!(text.contains(why), "{what}: {text}");
     }
 }
 
@@ -785,7 +959,7 @@ fn logger_gets_a_safe_format_and_the_copied_name() {
     // The host frees its name right after instantiate.
     let log: Box<Log> = Box::default();
     let cb = callbacks(&*log as *const Log as *mut c_void);
-    let guid = CString::new(GUIDS[BEAM]).unwrap();
+    let (guid, _) = resources(BEAM);
     let name = CString::new("temporary-name").unwrap();
     let c = unsafe { instantiate(name.as_ptr(), fmi2CoSimulation, guid.as_ptr(), &*cb) };
     drop(name);
@@ -812,7 +986,7 @@ fn component_environment_is_handed_back() {
     // NULL: still handed back as NULL.
     NULL_ENV_LOG.with(|l| l.borrow_mut().clear());
     let cb = callbacks(null_mut());
-    let guid = CString::new(GUIDS[BEAM]).unwrap();
+    let (guid, _) = resources(BEAM);
     unsafe {
         let c = instantiate(c"null-env".as_ptr(), fmi2CoSimulation, guid.as_ptr(), &*cb);
         assert_eq!(fmi2Terminate(c), fmi2Status::Error);
@@ -908,7 +1082,7 @@ fn unknown_and_mistyped_value_references() {
         );
         fmu.expect_error(
             fmi2SetReal(c, &vr::H, 1, &1.0),
-            &["`H`", "not a variable of the BuckledBeam"],
+            &["value reference 13", "not a variable of the BuckledBeam"],
         );
         fmu.expect_error(fmi2SetReal(c, &vr::w_mid, 1, &1.0), &["`w_mid`", "output"]);
         fmu.expect_error(

@@ -14,9 +14,7 @@ mod common;
 use common::{max_abs, Table};
 use georod::integrator::{DynamicState, Midpoint};
 use georod::model::rod::{ROTATION, U1, U2};
-use georod::model::{ExcitationKind, LoadCase, ReferenceCurve, Rod};
-use georod::scene::{SceneKind, SceneParams};
-use georod::simulation::{build_rod, initial_displacements};
+use georod::model::{LoadSet, ReferenceCurve, Rod};
 use std::f64::consts::PI;
 
 /// A free rod: translation (30, -20), spin 300 rad/s about its middle, bending wobble in the first
@@ -43,7 +41,7 @@ fn midpoint_conserves_momenta_of_free_rod() {
         0.0,
         20,
     );
-    let loads = LoadCase::new(&rod, ExcitationKind::Distributed); // amplitude 0: no load
+    let loads = LoadSet::new(&rod, &[]); // no load
     let mut state = free_rod_initial(&rod);
     let mut mid = Midpoint::new(&rod);
     let dt = 1e-5;
@@ -64,7 +62,7 @@ fn midpoint_conserves_momenta_of_free_rod() {
     ));
     for n in 0..1000 {
         iterations += mid
-            .step(&rod, &loads, &mut state, n as f64 * dt, dt)
+            .step(&rod, &loads, &mut state, n as f64 * dt, dt, &[])
             .expect("midpoint step")
             .iterations;
         let p = rod.linear_momentum(&state.v);
@@ -145,13 +143,13 @@ fn strain_energy_invariant_under_rigid_rotation() {
 fn damped_energy_decreases_monotonically() {
     // The BuckledBeam scene (d = 5e-4 per unit length on the translations, 10 elements), released
     // from its static buckled state with a large velocity disturbance, no excitation.
-    let params = SceneParams::defaults(SceneKind::BuckledBeam);
-    let (rod, kind) = build_rod(&params);
-    let u0 = initial_displacements(&params, &rod).expect("buckled state");
-    let loads = LoadCase::new(&rod, kind);
-    let mut state = DynamicState::at_rest(u0);
+    let sim = common::simulation("BuckledBeam", &[("F", 0.0)]);
+    let rod = sim.rod().clone();
+    let span = common::param(&sim, "L");
+    let loads = LoadSet::new(&rod, &[]); // no excitation
+    let mut state = sim.state().clone();
     for i in 0..rod.nodes() {
-        let s = rod.node_s[i] / params.span;
+        let s = rod.node_s[i] / span;
         state.v[3 * i + U1] = 20.0 * (2.0 * PI * s).sin();
         state.v[3 * i + U2] = 150.0 * (PI * s).sin() - 100.0 * (2.0 * PI * s).sin();
         state.v[3 * i + ROTATION] = 30.0 * (PI * s).cos();
@@ -175,7 +173,7 @@ fn damped_energy_decreases_monotonically() {
     let mut increases = 0;
     for n in 0..steps {
         let v_n = state.v.clone();
-        mid.step(&rod, &loads, &mut state, n as f64 * dt, dt)
+        mid.step(&rod, &loads, &mut state, n as f64 * dt, dt, &[])
             .expect("midpoint step");
         let e = energy(&state);
         // Midpoint energy balance: E_(n+1) - E_n = -dt v^T C v (v = (v_n + v_(n+1)) / 2) + err,

@@ -10,7 +10,7 @@ use common::{dense_tangent, max_abs, Rng, Table};
 use georod::integrator::{DynamicState, Midpoint, NewtonStats, StaticSolver};
 use georod::model::element::Vector6;
 use georod::model::rod::{ROTATION, U1, U2};
-use georod::model::{Element, ExcitationKind, LoadCase, ReferenceCurve, Rod};
+use georod::model::{Element, LoadSet, ReferenceCurve, Rod};
 use nalgebra::DMatrix;
 
 /// Central-difference step. The truncation error is `h^2 f''' / 6` relative (`f` is smooth on the
@@ -268,7 +268,7 @@ fn newton_converges_quadratically() {
     // Dynamic: a free rod spinning at 2000 rad/s while bending, midpoint steps with dt = 2e-4
     // (20 x dt_max; the first bending period is ~2e-3): a rotation of 0.4 rad per step.
     let rod = common::straight_rod(10.0, 1.0, 1.0, 5e-4, 20);
-    let loads = LoadCase::new(&rod, ExcitationKind::Distributed);
+    let loads = LoadSet::new(&rod, &[]);
     let mut state = DynamicState::at_rest(vec![0.0; rod.dofs()]);
     let omega = 2000.0;
     for i in 0..rod.nodes() {
@@ -286,7 +286,7 @@ fn newton_converges_quadratically() {
     let mut checked = 0;
     for n in 0..3 {
         let stats = mid
-            .step(&rod, &loads, &mut state, n as f64 * 2e-4, 2e-4)
+            .step(&rod, &loads, &mut state, n as f64 * 2e-4, 2e-4, &[])
             .expect("midpoint step");
         checked += check_quadratic(&mut t, &format!("step {n}"), &stats, 10.0, 1e-11);
     }
@@ -304,7 +304,7 @@ fn newton_converges_quadratically() {
 #[test]
 fn chord_corrections_reach_the_newton_solution() {
     let rod = common::straight_rod(10.0, 1.0, 1.0, 5e-4, 20);
-    let loads = LoadCase::new(&rod, ExcitationKind::Distributed);
+    let loads = LoadSet::new(&rod, &[]);
     let mut start = DynamicState::at_rest(vec![0.0; rod.dofs()]);
     for i in 0..rod.nodes() {
         let s = rod.node_s[i];
@@ -329,10 +329,10 @@ fn chord_corrections_reach_the_newton_solution() {
         for n in 0..steps {
             let t_n = n as f64 * dt;
             let a = newton
-                .step(&rod, &loads, &mut plain, t_n, dt)
+                .step(&rod, &loads, &mut plain, t_n, dt, &[])
                 .expect("Newton");
             let b = chord
-                .step(&rod, &loads, &mut reused, t_n, dt)
+                .step(&rod, &loads, &mut reused, t_n, dt, &[])
                 .expect("chord");
             newton_work = (
                 newton_work.0 + a.iterations,

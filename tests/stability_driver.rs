@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use georod::integrator::{DynamicState, Midpoint, NewtonFailure};
-use georod::model::{LoadCase, Rod};
+use georod::model::{LoadSet, Rod};
 use std::io::Write;
 
 /// What one adaptive step did.
@@ -20,7 +20,7 @@ pub struct Adaptive {
 pub fn step_adaptive(
     integrator: &mut Midpoint,
     rod: &Rod,
-    loads: &LoadCase,
+    loads: &LoadSet,
     state: &mut DynamicState,
     t: f64,
     dt: f64,
@@ -35,7 +35,7 @@ pub fn step_adaptive(
         let mut iterations = 0;
         let mut ok = true;
         for k in 0..n {
-            match integrator.step(rod, loads, &mut trial, t + k as f64 * h, h) {
+            match integrator.step(rod, loads, &mut trial, t + k as f64 * h, h, &[]) {
                 Ok(s) => iterations += s.iterations,
                 Err(e) => {
                     last = Some(e);

@@ -27,7 +27,7 @@ use common::Table;
 use driver::step_adaptive;
 use georod::integrator::{DynamicState, Midpoint, Scheme, StaticSolver};
 use georod::model::rod::{ROTATION, U1, U2};
-use georod::model::{ExcitationKind, LoadCase, Rod};
+use georod::model::{LoadSet, Rod};
 use std::io::Write;
 
 const LENGTH: f64 = 10.0;
@@ -77,7 +77,7 @@ struct Run {
 
 fn run(case: &str, scheme: Scheme, dt: f64, steps: usize) -> Run {
     let rod = cantilever();
-    let loads = LoadCase::new(&rod, ExcitationKind::Distributed); // amplitude 0: free
+    let loads = LoadSet::new(&rod, &[]); // amplitude 0: free
     let mut state = DynamicState::at_rest(bent_state(&rod));
     let mut integrator = Midpoint::new(&rod);
     integrator.scheme = scheme;

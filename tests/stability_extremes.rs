@@ -7,21 +7,29 @@
 //! Run: `cargo test --release --test stability_extremes -- --nocapture`
 mod common;
 
-use common::Table;
-use georod::scene::{SceneKind, SceneParams};
+use common::{output, scene, Table};
+use georod::scene::variables::{variables, Role};
 use georod::simulation::{SimError, Simulation};
 use std::f64::consts::PI;
+use std::sync::Arc;
 
-const OUTPUTS: [&str; 8] = [
-    "w_mid",
-    "v_mid",
-    "E_kin",
-    "E_strain",
-    "W_ext",
-    "W_ctrl",
-    "E_damped",
-    "energy_error",
-];
+const SCENES: [&str; 3] = ["BuckledBeam", "PinnedArch", "ClampedArch"];
+
+/// Every output of the simulation's scene (sensors, reactions, shape, energies), by name.
+fn outputs(sim: &Simulation) -> Vec<(String, f64)> {
+    variables(sim.scene())
+        .into_iter()
+        .filter_map(|v| match v.role {
+            Role::Output(id) => Some((v.name, sim.output(id))),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Output values as bit patterns (NaN-safe equality).
+fn output_bits(sim: &Simulation) -> Vec<u64> {
+    outputs(sim).iter().map(|(_, x)| x.to_bits()).collect()
+}
 
 /// Tally of a run of communication steps.
 #[derive(Default, Debug)]
@@ -41,24 +49,22 @@ fn drive(sim: &mut Simulation, h: f64, steps: usize) -> Tally {
     let mut tally = Tally::default();
     for _ in 0..steps {
         let before = sim.snapshot();
-        let outputs_before = sim.outputs();
-        match sim.advance(h, 0.0) {
+        let outputs_before = output_bits(sim);
+        match sim.advance(h) {
             Ok(report) => {
                 tally.ok += 1;
                 tally.iterations = tally.iterations.max(report.newton_iterations);
                 tally.cuts = tally.cuts.max(report.cuts);
-                let o = sim.outputs();
-                for name in OUTPUTS {
-                    let v = o.by_name(name).unwrap();
+                for (name, v) in outputs(sim) {
                     assert!(v.is_finite(), "{name} = {v} after a converged step");
                 }
-                tally.max_w = tally.max_w.max(o.w_mid.abs());
+                tally.max_w = tally.max_w.max(output(sim, "w_mid").abs());
             }
             Err(SimError::StepFailed { reason, .. }) => {
                 tally.discarded += 1;
                 tally.first_failure.get_or_insert(reason);
                 assert_eq!(sim.snapshot(), before, "state changed by a failed step");
-                assert_eq!(sim.outputs(), outputs_before);
+                assert_eq!(output_bits(sim), outputs_before);
                 // A host would now give up or change something; retrying is pointless (the
                 // core is deterministic), so stop.
                 break;
@@ -69,8 +75,11 @@ fn drive(sim: &mut Simulation, h: f64, steps: usize) -> Tally {
     tally
 }
 
-fn scene(kind: SceneKind, overrides: &[(&str, f64)]) -> SceneParams {
-    SceneParams::with(kind, overrides.iter().copied()).expect("valid parameters")
+/// The simulation of a scene with overridden parameters, or why it could not be built.
+fn build(kind: &str, overrides: &[(&str, f64)]) -> Result<Simulation, SimError> {
+    let scene = scene(kind);
+    let values = scene.values_with(overrides.iter().copied())?;
+    Simulation::new(Arc::clone(&scene), values)
 }
 
 #[test]
@@ -85,12 +94,12 @@ fn huge_excitation_and_huge_steps() {
         "{:<12} {:>6} {:>7} {:>6} {:>4} {:>6} {:>6} {:>9} {:>6} {:>5}  first failure",
         "scene", "F", "Omega", "h/T", "int", "ok", "disc.", "max|w|", "iter", "cuts"
     ));
-    let cases: Vec<(SceneKind, f64, f64)> = vec![
-        (SceneKind::PinnedArch, 500.0, 1000.0),
-        (SceneKind::PinnedArch, 1000.0, 1000.0),
-        (SceneKind::PinnedArch, 3000.0, 1000.0),
-        (SceneKind::ClampedArch, 3000.0, 1000.0),
-        (SceneKind::BuckledBeam, 20.0, 3500.0),
+    let cases: Vec<(&str, f64, f64)> = vec![
+        ("PinnedArch", 500.0, 1000.0),
+        ("PinnedArch", 1000.0, 1000.0),
+        ("PinnedArch", 3000.0, 1000.0),
+        ("ClampedArch", 3000.0, 1000.0),
+        ("BuckledBeam", 20.0, 3500.0),
     ];
     let mut converged_any = false;
     for (kind, f, omega) in cases {
@@ -98,7 +107,7 @@ fn huge_excitation_and_huge_steps() {
             for integrator in [1.0, 2.0] {
                 let period = 2.0 * PI / omega;
                 let h = period / per_period;
-                let mut sim = Simulation::new(scene(
+                let mut sim = build(
                     kind,
                     &[
                         ("F", f),
@@ -106,13 +115,12 @@ fn huge_excitation_and_huge_steps() {
                         ("dt_max", h),
                         ("integrator", integrator),
                     ],
-                ))
+                )
                 .expect("initial state");
                 let tally = drive(&mut sim, h, (20.0 * per_period) as usize);
                 converged_any |= tally.discarded == 0;
                 t.row(format_args!(
-                    "{:<12} {f:>6} {omega:>7} {:>6} {integrator:>4} {:>6} {:>6} {:>9.3} {:>6} {:>5}  {}",
-                    kind.name(),
+                    "{kind:<12} {f:>6} {omega:>7} {:>6} {integrator:>4} {:>6} {:>6} {:>9.3} {:>6} {:>5}  {}",
                     format!("1/{per_period}"),
                     tally.ok,
                     tally.discarded,
@@ -140,43 +148,32 @@ fn elements_from_2_to_10000() {
         "{:<12} {:>8} {:>4} {:>6} {:>6} {:>11} {:>6}",
         "scene", "elements", "int", "ok", "disc.", "w_mid", "iter"
     ));
-    for kind in SceneKind::ALL {
-        let f = if kind == SceneKind::BuckledBeam {
-            7.0
-        } else {
-            1000.0
-        };
+    for kind in SCENES {
+        let f = if kind == "BuckledBeam" { 7.0 } else { 1000.0 };
         for elements in [2usize, 3, 4, 10, 100, 1000, 10_000] {
             for integrator in [1.0, 2.0] {
                 if elements == 10_000 && integrator == 2.0 {
                     continue; // the same path; keeps the test short
                 }
-                let params = scene(
-                    kind,
-                    &[
-                        ("elements", elements as f64),
-                        ("F", f),
-                        ("integrator", integrator),
-                    ],
-                );
-                let mut sim = match Simulation::new(params) {
+                let overrides = [
+                    ("elements", elements as f64),
+                    ("F", f),
+                    ("integrator", integrator),
+                ];
+                let mut sim = match build(kind, &overrides) {
                     Ok(s) => s,
                     Err(e) => {
-                        t.row(format_args!(
-                            "{:<12} {elements:>8} refused: {e}",
-                            kind.name()
-                        ));
+                        t.row(format_args!("{kind:<12} {elements:>8} refused: {e}"));
                         assert!(matches!(e, SimError::InitialState(_)), "{e}");
                         continue;
                     }
                 };
                 let tally = drive(&mut sim, 1e-4, 10);
                 t.row(format_args!(
-                    "{:<12} {elements:>8} {integrator:>4} {:>6} {:>6} {:>11.4e} {:>6}  {}",
-                    kind.name(),
+                    "{kind:<12} {elements:>8} {integrator:>4} {:>6} {:>6} {:>11.4e} {:>6}  {}",
                     tally.ok,
                     tally.discarded,
-                    sim.outputs().w_mid,
+                    output(&sim, "w_mid"),
                     tally.iterations,
                     tally.first_failure.as_deref().unwrap_or("")
                 ));
@@ -222,23 +219,26 @@ fn parameters_at_the_edges() {
         ("H", 1e-6),
         ("H", 16.0),
     ];
-    for kind in SceneKind::ALL {
+    for kind in SCENES {
+        let scene = scene(kind);
         for &(name, value) in &edges {
-            let mut params = SceneParams::defaults(kind);
-            if params.variable(name).is_err() {
+            let mut params = scene.defaults();
+            if scene.param_index(name).is_none() {
                 continue; // not a parameter of this scene
             }
-            if kind != SceneKind::BuckledBeam {
-                params.set("F", 300.0).expect("F"); // the arches' default F is 0: excite them
+            if kind != "BuckledBeam" {
+                scene.set(&mut params, "F", 300.0).expect("F"); // the arches' default F is 0
             }
-            params.set(name, value).expect("inside the range");
-            let label = format!("{:<12} {name:>14} = {value:<10e}", kind.name());
-            if let Err(e) = params.validate() {
-                t.row(format_args!("{label} refused by validate: {e}"));
+            scene
+                .set(&mut params, name, value)
+                .expect("inside the range");
+            let label = format!("{kind:<12} {name:>14} = {value:<10e}");
+            if let Err(e) = scene.check(&params) {
+                t.row(format_args!("{label} refused by check: {e}"));
                 assert_eq!(e.name, name);
                 continue;
             }
-            let mut sim = match Simulation::new(params) {
+            let mut sim = match Simulation::new(Arc::clone(&scene), params) {
                 Ok(s) => s,
                 Err(e) => {
                     t.row(format_args!("{label} no initial state: {e}"));
@@ -246,9 +246,9 @@ fn parameters_at_the_edges() {
                     continue;
                 }
             };
-            let o = sim.outputs();
+            let o = outputs(&sim);
             assert!(
-                OUTPUTS.iter().all(|n| o.by_name(n).unwrap().is_finite()),
+                o.iter().all(|(_, x)| x.is_finite()),
                 "{label}: non-finite initial outputs {o:?}"
             );
             let tally = drive(&mut sim, 1e-4, 20);
@@ -256,8 +256,8 @@ fn parameters_at_the_edges() {
                 "{label} ok {:>3}, discarded {}, w_mid {:>11.4e}, E_strain {:>10.3e}, max iter {:>4} {}",
                 tally.ok,
                 tally.discarded,
-                sim.outputs().w_mid,
-                sim.outputs().strain_energy,
+                output(&sim, "w_mid"),
+                sim.strain_energy(),
                 tally.iterations,
                 tally.first_failure.as_deref().unwrap_or("")
             ));
@@ -267,7 +267,7 @@ fn parameters_at_the_edges() {
 
 #[test]
 fn refused_values_name_the_variable() {
-    let mut t = Table::new("values out of range: refused by SceneParams::set, naming the variable");
+    let mut t = Table::new("values out of range: refused by Scene::set, naming the variable");
     let bad: Vec<(&str, f64)> = vec![
         ("E", 0.0),
         ("E", -1.0),
@@ -287,30 +287,27 @@ fn refused_values_name_the_variable() {
         ("Omega", -1.0),
         ("integrator", 3.0),
     ];
-    for kind in SceneKind::ALL {
+    for kind in SCENES {
+        let scene = scene(kind);
         for &(name, value) in &bad {
-            let mut p = SceneParams::defaults(kind);
+            let mut p = scene.defaults();
             let before = p.clone();
-            let e = p.set(name, value).expect_err("must be refused");
+            let e = scene.set(&mut p, name, value).expect_err("must be refused");
             assert_eq!(e.name, name);
             assert!(e.to_string().contains(name), "{e}");
             assert_eq!(p, before, "a refused value changed the parameters");
-            if kind == SceneKind::BuckledBeam {
+            if kind == "BuckledBeam" {
                 t.row(format_args!("  {name} = {value}: {e}"));
             }
         }
     }
-    // Cross conditions are checked by validate (and Simulation::new), also naming the variable.
-    let e = Simulation::new(SceneParams {
-        pre_shortening: 5.0,
-        ..SceneParams::defaults(SceneKind::BuckledBeam)
-    })
-    .err()
-    .expect("pre_shortening = L/2 refused");
-    t.row(format_args!("  pre_shortening = L/2: {e}"));
-    assert!(e.to_string().contains("pre_shortening"));
-    let e = SceneParams::with(SceneKind::PinnedArch, [("H", 17.0)]).expect_err("H > L/2");
-    assert_eq!(e.name, "H");
+    // Conditions between parameters are checked by Scene::check (and Simulation::new), also
+    // naming the variable.
+    let e = build("PinnedArch", &[("H", 17.0)]).err().expect("H > L/2");
+    assert!(matches!(&e, SimError::Param(p) if p.name == "H"), "{e}");
+    // A support off the mesh: the message says which element counts work.
+    let e = build("BuckledBeam", &[("elements", 11.0)]);
+    assert!(e.is_ok(), "supports at both ends are on every mesh");
 }
 
 /// dt_max far below h: one communication step would need h / dt_max sub-steps (here about
@@ -318,12 +315,11 @@ fn refused_values_name_the_variable() {
 /// running for ever, and the state is untouched.
 #[test]
 fn tiny_dt_max_is_refused() {
-    let mut sim = Simulation::new(scene(SceneKind::BuckledBeam, &[("dt_max", 1e-300)]))
-        .expect("initial state");
+    let mut sim = build("BuckledBeam", &[("dt_max", 1e-300)]).expect("initial state");
     let n = sim.substeps_for(1e-3);
     let before = sim.snapshot();
     let start = std::time::Instant::now();
-    let e = sim.advance(1e-3, 0.0).expect_err("too many sub-steps");
+    let e = sim.advance(1e-3).expect_err("too many sub-steps");
     println!("dt_max = 1e-300, h = 1e-3: {n} sub-steps -> {e}");
     assert!(n > georod::simulation::MAX_SUBSTEPS);
     assert!(e.to_string().contains("dt_max"), "{e}");

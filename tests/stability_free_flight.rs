@@ -17,7 +17,7 @@ mod driver;
 use common::Table;
 use georod::integrator::{DynamicState, Midpoint, Scheme};
 use georod::model::rod::{ROTATION, U1, U2};
-use georod::model::{ExcitationKind, LoadCase, Rod};
+use georod::model::{LoadSet, Rod};
 use std::f64::consts::PI;
 use std::io::Write;
 
@@ -71,7 +71,7 @@ struct Run {
 
 fn run(scheme: Scheme, dt: f64, steps: usize) -> Run {
     let (rod, mut state) = bent_spinning_rod();
-    let loads = LoadCase::new(&rod, ExcitationKind::Distributed);
+    let loads = LoadSet::new(&rod, &[]);
     let mut integrator = Midpoint::new(&rod);
     integrator.scheme = scheme;
     let energy = |s: &DynamicState| rod.kinetic_energy(&s.v) + rod.strain_energy(&s.u);

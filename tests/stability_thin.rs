@@ -21,7 +21,7 @@ use common::{cantilever_tip, timoshenko_bending_omega, Table, NU};
 use georod::integrator::continuation::{follow_path, ContinuationSettings};
 use georod::integrator::{DynamicState, Midpoint, StaticSolver};
 use georod::model::rod::{ROTATION, U1, U2};
-use georod::model::{ExcitationKind, LoadCase, Rod};
+use georod::model::{LoadSet, Rod};
 use std::f64::consts::PI;
 
 const LENGTH: f64 = 10.0;
@@ -233,7 +233,7 @@ fn thin_rod_vibration_without_locking() {
             state.u[3 * i + U2] = amplitude * (k * s).sin();
             state.u[3 * i + ROTATION] = amplitude * k * (k * s).cos();
         }
-        let loads = LoadCase::new(&rod, ExcitationKind::Distributed);
+        let loads = LoadSet::new(&rod, &[]);
         let mut mid = Midpoint::new(&rod);
         let w_mid = |u: &[f64]| rod.interpolate(u, rod.midspan(), U2);
         let (mut iterations, mut worst, mut cut_steps) = (0u32, 0u32, 0usize);

@@ -1,8 +1,9 @@
 """georod_tools: Python analyses around the georod FMUs (geometrically exact planar rod, FMI 2.0
 Co-Simulation).
 
-The FMUs are built by ``scripts/build_fmus`` into ``target/fmu/<Scene>.fmu``; the helpers below
-locate them. Analyses (Poincaré sections, parameter sweeps, co-simulation) live in submodules.
+A scene is a TOML file (``scenes/<Scene>.toml`` for the repository's own); ``scripts/build_fmus``
+packages each into ``target/fmu/<Scene>.fmu``, and the helpers below locate them. Analyses
+(Poincaré sections, parameter sweeps, co-simulation, animations) live in submodules.
 """
 
 from __future__ import annotations
@@ -11,21 +12,30 @@ from pathlib import Path
 
 __version__ = "0.1.0"
 
-#: The scenes, one FMU each (``modelIdentifier`` = scene name).
-SCENES: tuple[str, ...] = ("BuckledBeam", "PinnedArch", "ClampedArch")
-
 #: The repository root (this file is python/georod_tools/__init__.py).
 REPO_ROOT: Path = Path(__file__).resolve().parents[2]
+
+#: The repository's scene files.
+SCENE_DIR: Path = REPO_ROOT / "scenes"
 
 #: Where scripts/build_fmus writes the FMUs.
 FMU_DIR: Path = REPO_ROOT / "target" / "fmu"
 
 
+def scenes() -> tuple[str, ...]:
+    """The names of the repository's scenes: ``scenes/*.toml`` (one FMU each)."""
+    return tuple(sorted(p.stem for p in SCENE_DIR.glob("*.toml")))
+
+
 def fmu_path(scene: str) -> Path:
-    """``target/fmu/<scene>.fmu``; raises ``ValueError`` for an unknown scene."""
-    if scene not in SCENES:
-        raise ValueError(f"unknown scene {scene!r}; expected one of {', '.join(SCENES)}")
-    return FMU_DIR / f"{scene}.fmu"
+    """``target/fmu/<scene>.fmu`` for a scene of ``scenes/`` or an FMU already packaged there;
+    raises ``ValueError`` otherwise."""
+    path = FMU_DIR / f"{scene}.fmu"
+    if scene not in scenes() and not path.is_file():
+        raise ValueError(
+            f"unknown scene {scene!r}: not in scenes/ ({', '.join(scenes())}) and no {path}"
+        )
+    return path
 
 
-__all__ = ["FMU_DIR", "REPO_ROOT", "SCENES", "fmu_path", "__version__"]
+__all__ = ["FMU_DIR", "REPO_ROOT", "SCENE_DIR", "fmu_path", "scenes", "__version__"]

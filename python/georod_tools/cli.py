@@ -24,7 +24,6 @@ from georod_tools.classify import ClassifySettings
 if TYPE_CHECKING:
     from georod_tools.runner import CaseConfig
 
-SCENES = ("BuckledBeam", "PinnedArch", "ClampedArch")
 DEFAULT_OUT = Path("out") / "chaos"
 
 
@@ -50,7 +49,9 @@ def _name_value(text: str) -> tuple[str, float]:
 def _add_case_options(p: argparse.ArgumentParser, sweep: bool) -> None:
     g = p.add_argument_group("model")
     g.add_argument("--fmu", type=Path, help="FMU file (default: target/fmu/<scene>.fmu)")
-    g.add_argument("--scene", choices=SCENES, default="BuckledBeam", help="scene when no --fmu")
+    g.add_argument(
+        "--scene", default="BuckledBeam", help="scene of scenes/ when no --fmu (BuckledBeam)"
+    )
     g.add_argument("--F", type=float, help="forcing amplitude (default: the FMU's start value)")
     g.add_argument("--Omega", type=float, help="forcing frequency in rad/s, > 0 (default: FMU's)")
     g.add_argument("--elements", type=int, default=10, help="finite elements, >= 2 (10)")

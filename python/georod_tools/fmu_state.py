@@ -8,40 +8,37 @@ documented byte layout (src/fmi/fmu_state.rs): decode the vectors, patch them, a
 Layout (bincode 1.3 default options: little endian, fixed-width integers, u64 length prefixes,
 u8 Option tags, u32 enum variant indices, f64 as 8 bytes)::
 
-    Header { magic: [u8; 8] = b"GEOROD\\0S", format_version: u32 (= 2), scene: String,
+    Header { magic: [u8; 8] = b"GEOROD\\0S", format_version: u32 (= 3), scene: String,
              elements: u64 }
     Body   { fmi_state: enum (u32), experiment: { tolerance: Option<f64>, start_time: f64,
-             stop_time: Option<f64> }, params: Vec<(String, f64)>, f_ctrl: f64,
+             stop_time: Option<f64> }, params: Vec<(String, f64)>, inputs: Vec<Option<f64>>,
              snapshot: Option<Snapshot> }
-    Snapshot { version: u32 (= 2), kind: enum (u32), elements: u64, time: f64,
-               displacements: Vec<f64>, velocities: Vec<f64>, forcing_amplitude: f64,
-               forcing_frequency: f64, last_newton_iterations: u32,
-               energy: { external_work, control_work, dissipated, initial_energy: f64 },
+    Snapshot { version: u32 (= 3), scene: String, elements: u64, time: f64,
+               displacements: Vec<f64>, velocities: Vec<f64>, values: Vec<f64>,
+               inputs: Vec<f64>, reactions: Vec<[f64; 3]>, last_newton_iterations: u32,
+               energy: { external_work, input_work, support_work, dissipated,
+                         initial_energy: f64 },
                clock: { origin: f64, step: f64, count: u64 } }
 
-The vectors hold 3 entries per node (u1, u2, w), prescribed ones included (src/model/rod.rs).
+The vectors hold 3 entries per node (u1, u2, w), held ones included (src/model/rod.rs). Which
+dofs the supports hold is read from the scene file the FMU carries (resources/scene.toml).
 Patching replaces values in place, so the layout and length never change.
 """
 
 from __future__ import annotations
 
 import struct
+import tomllib
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
 MAGIC = b"GEOROD\x00S"
-FORMAT_VERSION = 2
-SNAPSHOT_VERSION = 2
+FORMAT_VERSION = 3
+SNAPSHOT_VERSION = 3
 DOFS_PER_NODE = 3
-U1, U2, ROTATION = 0, 1, 2
-
-#: Prescribed degrees of freedom per scene: (node, dof) with node -1 = last node (model.md).
-SUPPORTS: dict[str, tuple[tuple[int, int], ...]] = {
-    "BuckledBeam": ((0, U1), (0, U2), (-1, U1), (-1, U2)),
-    "PinnedArch": ((0, U1), (0, U2), (-1, U1), (-1, U2)),
-    "ClampedArch": ((0, U1), (0, U2), (0, ROTATION), (-1, U1), (-1, U2), (-1, ROTATION)),
-}
+DOF_NAMES = ("u1", "u2", "w")
 
 
 class StateFormatError(ValueError):
@@ -102,8 +99,6 @@ class DecodedState:
     time: float
     displacements: np.ndarray
     velocities: np.ndarray
-    forcing_amplitude: float
-    forcing_frequency: float
     params: dict[str, float]
     u_offset: int
     v_offset: int
@@ -134,7 +129,8 @@ def decode_state(blob: bytes) -> DecodedState:
     for _ in range(r.u64()):
         name = r.string()
         params[name] = r.f64()
-    r.f64()  # f_ctrl
+    for _ in range(r.u64()):  # inputs the host set
+        r.option_f64()
     if r.u8() != 1:
         raise StateFormatError("the state holds no simulation (taken before initialization)")
     snap_version = r.u32()
@@ -142,16 +138,18 @@ def decode_state(blob: bytes) -> DecodedState:
         raise StateFormatError(
             f"snapshot version {snap_version}, this module reads {SNAPSHOT_VERSION}"
         )
-    r.u32()  # kind
+    if r.string() != scene:
+        raise StateFormatError("snapshot and header disagree on the scene")
     if r.u64() != elements:
         raise StateFormatError("snapshot and header disagree on the number of elements")
     time = r.f64()
     u_off, u = r.f64_vec()
     v_off, v = r.f64_vec()
-    amplitude = r.f64()
-    frequency = r.f64()
+    r.f64_vec()  # parameter values
+    r.f64_vec()  # inputs
+    r.take(24 * r.u64())  # reactions, 3 per support
     r.u32()  # last_newton_iterations
-    for _ in range(4):  # energy ledger: external_work, control_work, dissipated, initial_energy
+    for _ in range(5):  # energy ledger
         r.f64()
     r.f64()  # clock.origin
     r.f64()  # clock.step
@@ -161,7 +159,7 @@ def decode_state(blob: bytes) -> DecodedState:
     dofs = DOFS_PER_NODE * (elements + 1)
     if u.size != dofs or v.size != dofs:
         raise StateFormatError(f"vectors of length {u.size}/{v.size}, expected {dofs}")
-    return DecodedState(scene, elements, time, u, v, amplitude, frequency, params, u_off, v_off)
+    return DecodedState(scene, elements, time, u, v, params, u_off, v_off)
 
 
 def encode_state(template: bytes, displacements: np.ndarray, velocities: np.ndarray) -> bytes:
@@ -179,14 +177,16 @@ def encode_state(template: bytes, displacements: np.ndarray, velocities: np.ndar
     return bytes(out)
 
 
-def free_mask(scene: str, elements: int) -> np.ndarray:
-    """True for every degree of freedom that is not prescribed by the supports of `scene`."""
-    if scene not in SUPPORTS:
-        raise ValueError(f"unknown scene {scene!r}")
+def free_mask(scene_file: Path, elements: int) -> np.ndarray:
+    """True for every degree of freedom that the supports of the scene (its TOML file, e.g. an
+    unzipped FMU's resources/scene.toml) do not hold, for a mesh of `elements` elements."""
+    scene = tomllib.loads(Path(scene_file).read_text(encoding="utf-8"))
     nodes = elements + 1
     mask = np.ones(DOFS_PER_NODE * nodes, dtype=bool)
-    for node, dof in SUPPORTS[scene]:
-        mask[DOFS_PER_NODE * (node % nodes) + dof] = False
+    for support in scene.get("support", []):
+        node = round(float(support["at"]) * elements)
+        for dof in support["fix"]:
+            mask[DOFS_PER_NODE * node + DOF_NAMES.index(dof)] = False
     return mask
 
 
@@ -202,7 +202,6 @@ def build_state(
     displacements: np.ndarray,
     velocities: np.ndarray,
     params: dict[str, float] | None = None,
-    forcing: tuple[float, float] = (0.0, 1.0),
 ) -> bytes:
     """A complete serialized state in the same layout (for unit tests of the codec without an
     FMU; the FMU would also accept it if `params` listed every parameter of the scene)."""
@@ -216,10 +215,14 @@ def build_state(
     out += struct.pack("<Q", len(params))
     for name, value in params.items():
         out += _w_string(name) + struct.pack("<d", value)
-    out += struct.pack("<d", 0.0)  # f_ctrl
-    out += b"\x01" + struct.pack("<IIQd", SNAPSHOT_VERSION, 0, elements, time)
+    out += struct.pack("<Q", 0)  # inputs
+    out += b"\x01" + struct.pack("<I", SNAPSHOT_VERSION) + _w_string(scene)
+    out += struct.pack("<Qd", elements, time)
     out += struct.pack("<Q", u.size) + u.tobytes() + struct.pack("<Q", v.size) + v.tobytes()
-    out += struct.pack("<ddI", forcing[0], forcing[1], 0)
-    out += struct.pack("<dddd", 0.0, 0.0, 0.0, 0.0)  # energy ledger
+    values = np.array(list(params.values()), dtype="<f8")
+    out += struct.pack("<Q", values.size) + values.tobytes()
+    out += struct.pack("<QQ", 0, 0)  # inputs, reactions
+    out += struct.pack("<I", 0)  # last_newton_iterations
+    out += struct.pack("<ddddd", 0.0, 0.0, 0.0, 0.0, 0.0)  # energy ledger
     out += struct.pack("<ddQ", time, 0.0, 0)  # clock: origin = time, no sub-steps counted
     return bytes(out)

@@ -275,7 +275,8 @@ class FmuPair:
     def __init__(self, ref: Instance, pert: Instance, omega: float, recorder: Recorder) -> None:
         self.ref, self.pert, self.omega, self.recorder = ref, pert, omega, recorder
         st = decode_state(ref.serialize())
-        self.mask = np.concatenate([free_mask(st.scene, st.elements)] * 2)
+        scene_file = ref.model.unzipdir / "resources" / "scene.toml"
+        self.mask = np.concatenate([free_mask(scene_file, st.elements)] * 2)
 
     def _vector(self, blob: bytes) -> np.ndarray:
         st = decode_state(blob)

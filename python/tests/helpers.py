@@ -31,7 +31,8 @@ REPO = Path(__file__).resolve().parents[2]
 FMU_DIR = REPO / "target" / "fmu"
 RELEASE_DIR = REPO / "target" / "release"
 GEOROD_CLI = RELEASE_DIR / "georod"
-SCENES: tuple[str, ...] = ("BuckledBeam", "PinnedArch", "ClampedArch")
+#: The paper's scenes, whose FMUs these tests exercise (scene files in scenes/).
+SCENES: tuple[str, ...] = tuple(sorted(p.stem for p in (REPO / "scenes").glob("*.toml")))
 
 # FMI 2.0 status codes (fmi2Status)
 OK, WARNING, DISCARD, ERROR, FATAL = 0, 1, 2, 3, 4

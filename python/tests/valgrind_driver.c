@@ -37,8 +37,8 @@ typedef struct {
     fmi2ComponentEnvironment componentEnvironment;
 } fmi2CallbackFunctions;
 
-/* value references of shared/spec/fmu.md (modelDescription/variables.toml) */
-enum { VR_F = 9, VR_OMEGA = 10, VR_F_CTRL = 20, VR_W_MID = 30, VR_V_MID = 31, VR_E_KIN = 32, VR_E_STRAIN = 33,
+/* value references of the paper scenes (scenes/*.toml; tests/fmi_api.rs checks them) */
+enum { VR_F = 9, VR_OMEGA = 10, VR_F_CTRL = 1000, VR_W_MID = 2000, VR_V_MID = 2001, VR_E_KIN = 32, VR_E_STRAIN = 33,
        VR_NEWTON = 34 };
 
 static int messages = 0;

@@ -153,8 +153,9 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
     })
 }
 
-/// Creates an instance of the scene whose GUID is `fmuGUID`. Returns NULL (with a message when
-/// a logger was given) for a NULL or empty instance name, a GUID of no scene, or Model Exchange.
+/// Creates an instance of the scene in `<fmuResourceLocation>/scene.toml`. Returns NULL (with a
+/// message when a logger was given) for a NULL or empty instance name, Model Exchange, missing
+/// or unusable resources, or a scene file whose modelDescription GUID is not `fmuGUID`.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2Instantiate(
     instanceName: fmi2String,
@@ -199,29 +200,23 @@ pub unsafe extern "C" fn fmi2Instantiate(
         let Some(guid) = string(fmuGUID) else {
             return refuse("fmuGUID is NULL".to_string());
         };
-        let Some(kind) = super::instance::scene_for_guid(&guid) else {
-            return refuse(format!(
-                "GUID \"{guid}\" matches none of the scenes of this binary ({}): \
-                 modelDescription.xml and binary do not belong together",
-                crate::variables::SCENE_NAMES.join(", ")
-            ));
-        };
         let location = string(fmuResourceLocation);
         let dir = match location.as_deref().map(uri::file_uri_to_path) {
             Some(Ok(dir)) => Some(dir),
-            Some(Err(why)) => {
-                // Not fatal: this FMU reads no resources.
-                log.warning(&format!(
-                    "fmi2Instantiate: fmuResourceLocation not usable: {why}"
-                ));
-                None
-            }
+            Some(Err(why)) => return refuse(format!("fmuResourceLocation is not usable: {why}")),
             None => None,
         };
+        let interface = match super::interface::Interface::load(dir.as_deref(), &guid) {
+            Ok(i) => i,
+            Err(why) => return refuse(why),
+        };
         log.event(|| {
-            format!("instantiated the {kind} scene (GUID {guid}), resources: {location:?}")
+            format!(
+                "instantiated the {} scene (GUID {guid}), resources: {location:?}",
+                interface.scene.name
+            )
         });
-        let inst = Box::new(Instance::new(kind, log, location, dir));
+        let inst = Box::new(Instance::new(interface, log, location, dir));
         Box::into_raw(inst) as fmi2Component
     }));
     result.unwrap_or(std::ptr::null_mut())
@@ -463,7 +458,7 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
         inst.require(mask::ANY)?;
         let state = fmu_state(FMUstate)?;
         let size = out_ref(size, "size")?;
-        *size = fmu_state::serialize(&state.data)
+        *size = fmu_state::serialize(&state.data, inst.scene())
             .map_err(Failure::Error)?
             .len();
         Ok(())
@@ -479,7 +474,8 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
 ) -> fmi2Status {
     with_instance(c, "fmi2SerializeFMUstate", |inst| {
         inst.require(mask::ANY)?;
-        let bytes = fmu_state::serialize(&fmu_state(FMUstate)?.data).map_err(Failure::Error)?;
+        let bytes = fmu_state::serialize(&fmu_state(FMUstate)?.data, inst.scene())
+            .map_err(Failure::Error)?;
         if size != bytes.len() {
             return error(format!(
                 "size = {size} differs from the serialized size {} (ask fmi2SerializedFMUstateSize)",
@@ -506,7 +502,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         inst.require(mask::ANY)?;
         let bytes = input(serializedState as *const u8, size, "serializedState")?;
         let slot = out_ref(FMUstate, "FMUstate")?;
-        let data = fmu_state::deserialize(bytes, inst.kind(), inst.params().elements)
+        let data = fmu_state::deserialize(bytes, inst.scene(), inst.params().elements())
             .map_err(Failure::Error)?;
         // Like fmi2GetFMUstate: a state passed in is reused (fmpy passes one "for re-use");
         // overwriting the pointer would leak it.
@@ -671,13 +667,20 @@ mod tests {
 
     #[test]
     fn a_panic_is_caught_and_poisons_only_its_instance() {
-        let guid = std::ffi::CString::new(crate::variables::GUIDS[0]).unwrap();
+        let dir = std::env::temp_dir().join(format!("georod-api-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let source = std::fs::read_to_string("scenes/BuckledBeam.toml").unwrap();
+        std::fs::write(dir.join(crate::packaging::SCENE_RESOURCE), &source).unwrap();
+        let scene = crate::scene::Scene::parse(&source, "BuckledBeam.toml").unwrap();
+        let guid = crate::packaging::model_description::model_description(&scene).guid;
+        let guid = std::ffi::CString::new(guid).unwrap();
+        let uri = std::ffi::CString::new(format!("file://{}", dir.display())).unwrap();
         unsafe {
             let c = fmi2Instantiate(
                 c"p".as_ptr(),
                 fmi2CoSimulation,
                 guid.as_ptr(),
-                std::ptr::null(),
+                uri.as_ptr(),
                 std::ptr::null(),
                 fmi2False,
                 fmi2False,
@@ -692,5 +695,6 @@ mod tests {
             assert_eq!(fmi2EnterInitializationMode(c), fmi2Status::OK);
             fmi2FreeInstance(c);
         }
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

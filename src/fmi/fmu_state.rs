@@ -5,15 +5,14 @@
 //! `Header { magic: 8 bytes, format_version: u32, scene: String, elements: u64 }` then `Body`.
 //! The header is read first so that every mismatch gets its own clear message.
 use super::instance::{Experiment, FmiState};
-use crate::scene::{SceneKind, SceneParams};
+use crate::scene::{ParamValues, Scene};
 use crate::simulation::Snapshot;
-use crate::variables::{self, Causality};
 use serde::{Deserialize, Serialize};
 
 /// First bytes of every serialized state.
 pub const SERIAL_MAGIC: [u8; 8] = *b"GEOROD\x00S";
 /// Layout version of [`Body`]; bump it when the fields change.
-pub const SERIAL_VERSION: u32 = 2;
+pub const SERIAL_VERSION: u32 = 3;
 /// Marks a live `FmuState` allocation (detects garbage and freed pointers where cheap).
 const STATE_MAGIC: u64 = 0x4745_4f52_4f44_5354; // "GEORODST"
 const FREED_MAGIC: u64 = 0xdead_dead_dead_dead;
@@ -21,11 +20,13 @@ const FREED_MAGIC: u64 = 0xdead_dead_dead_dead;
 /// What an FMU state holds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StateData {
-    pub kind: SceneKind,
+    /// The scene's name.
+    pub scene: String,
     pub fmi_state: FmiState,
     pub experiment: Experiment,
-    pub params: SceneParams,
-    pub f_ctrl: f64,
+    pub params: ParamValues,
+    /// The inputs the host set (`None`: the start value).
+    pub inputs: Vec<Option<f64>>,
     /// The simulation state; `None` before `fmi2ExitInitializationMode` (nothing simulated yet).
     pub snapshot: Option<Snapshot>,
 }
@@ -81,10 +82,9 @@ struct Header {
 struct Body {
     fmi_state: FmiState,
     experiment: Experiment,
-    /// Every parameter of the scene by name (SceneParams itself deserializes only from a scene
-    /// file); values are exact f64 bit patterns.
+    /// Every parameter of the scene by name; values are exact f64 bit patterns.
     params: Vec<(String, f64)>,
-    f_ctrl: f64,
+    inputs: Vec<Option<f64>>,
     snapshot: Option<Snapshot>,
 }
 
@@ -92,27 +92,23 @@ fn header_of(data: &StateData) -> Header {
     Header {
         magic: SERIAL_MAGIC,
         format_version: SERIAL_VERSION,
-        scene: data.kind.name().to_string(),
-        elements: data.params.elements as u64,
+        scene: data.scene.clone(),
+        elements: data.params.elements() as u64,
     }
 }
 
-pub fn serialize(data: &StateData) -> Result<Vec<u8>, String> {
-    let params = variables::VARIABLES
+pub fn serialize(data: &StateData, scene: &Scene) -> Result<Vec<u8>, String> {
+    let params = scene
+        .params
         .iter()
-        .filter(|v| v.causality == Causality::Parameter && v.scenes[data.kind.index()])
-        .map(|v| {
-            (
-                v.name.to_string(),
-                data.params.get(v.name).expect("a parameter"),
-            )
-        })
+        .zip(&data.params.0)
+        .map(|(p, &x)| (p.name.clone(), x))
         .collect();
     let body = Body {
         fmi_state: data.fmi_state,
         experiment: data.experiment.clone(),
         params,
-        f_ctrl: data.f_ctrl,
+        inputs: data.inputs.clone(),
         snapshot: data.snapshot.clone(),
     };
     let mut bytes = bincode::serialize(&header_of(data)).map_err(|e| e.to_string())?;
@@ -120,8 +116,8 @@ pub fn serialize(data: &StateData) -> Result<Vec<u8>, String> {
     Ok(bytes)
 }
 
-/// Reads a serialized state for an instance of scene `kind` with `elements` elements.
-pub fn deserialize(bytes: &[u8], kind: SceneKind, elements: usize) -> Result<StateData, String> {
+/// Reads a serialized state for an instance of `scene` with `elements` elements.
+pub fn deserialize(bytes: &[u8], scene: &Scene, elements: usize) -> Result<StateData, String> {
     if bytes.len() < SERIAL_MAGIC.len() + 4 {
         return Err(format!(
             "{} bytes is too short for a serialized georod FMU state",
@@ -139,10 +135,10 @@ pub fn deserialize(bytes: &[u8], kind: SceneKind, elements: usize) -> Result<Sta
             header.format_version
         ));
     }
-    if header.scene != kind.name() {
+    if header.scene != scene.name {
         return Err(format!(
-            "the serialized state belongs to the {} scene, this instance is a {kind}",
-            header.scene
+            "the serialized state belongs to the {} scene, this instance is a {}",
+            header.scene, scene.name
         ));
     }
     if header.elements != elements as u64 {
@@ -161,32 +157,43 @@ pub fn deserialize(bytes: &[u8], kind: SceneKind, elements: usize) -> Result<Sta
             bytes.len()
         ));
     }
-    let mut params = SceneParams::defaults(kind);
+    let mut params = scene.defaults();
+    if body.params.len() != scene.params.len() {
+        return Err(format!(
+            "corrupt serialized state: {} parameters, the scene has {}",
+            body.params.len(),
+            scene.params.len()
+        ));
+    }
     for (name, value) in &body.params {
-        params
-            .set(name, *value)
+        scene
+            .set(&mut params, name, *value)
             .map_err(|e| format!("in the serialized state: {e}"))?;
     }
-    if params.elements != elements {
+    if params.elements() != elements {
         return Err("corrupt serialized state: `elements` disagrees with its header".to_string());
     }
     if let Some(s) = &body.snapshot {
-        if s.kind != kind || s.elements != elements {
+        if s.scene != scene.name || s.elements != elements {
             return Err(
                 "corrupt serialized state: the simulation snapshot disagrees with its header"
                     .into(),
             );
         }
     }
-    if !body.f_ctrl.is_finite() {
-        return Err("corrupt serialized state: f_ctrl is not finite".to_string());
+    if body.inputs.len() != scene.inputs.len()
+        || body.inputs.iter().flatten().any(|x| !x.is_finite())
+    {
+        return Err(
+            "corrupt serialized state: wrong number of inputs or a non-finite input".to_string(),
+        );
     }
     Ok(StateData {
-        kind,
+        scene: scene.name.clone(),
         fmi_state: body.fmi_state,
         experiment: body.experiment,
         params,
-        f_ctrl: body.f_ctrl,
+        inputs: body.inputs,
         snapshot: body.snapshot,
     })
 }

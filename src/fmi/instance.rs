@@ -12,13 +12,17 @@
 //!   parameters do not change); `newton_iterations` is 0 until the first step.
 //! - The simulation clock is `startTime + sim.time()`; the excitation `F cos(Omega t)` is phased
 //!   from `startTime`.
+//! - Inputs the host never set keep their start values (a support motion input: the support's
+//!   prescribed value for the current parameters, so the support stays where it is).
 use super::fmu_state::StateData;
+use super::interface::Interface;
 use super::logging::Logger;
-use crate::scene::{SceneKind, SceneParams};
-use crate::simulation::{Outputs, SimError, Simulation};
-use crate::variables::{self, Causality, VarType, Variability, Variable};
+use crate::scene::variables::input_start;
+use crate::scene::{ParamValues, Scene, Variability};
+use crate::simulation::{SimError, Simulation};
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+use std::sync::Arc;
 
 /// Marks a live `Instance` allocation (detects garbage and freed pointers where cheap).
 pub const INSTANCE_MAGIC: u64 = 0x4745_4f52_4f44_4649; // "GEORODFI"
@@ -53,7 +57,7 @@ impl FmiState {
         FmiState::Error,
     ];
 
-    fn bit(self) -> u16 {
+    pub(crate) fn bit(self) -> u16 {
         1 << self as u16
     }
 
@@ -99,7 +103,7 @@ pub mod mask {
     pub const STATUS: u16 = SC | SF | SCAN | T;
 }
 
-fn state_list(mask: u16) -> String {
+pub(crate) fn state_list(mask: u16) -> String {
     let names: Vec<&str> = FmiState::ALL
         .iter()
         .filter(|s| mask & s.bit() != 0)
@@ -145,37 +149,13 @@ impl Default for Experiment {
     }
 }
 
-/// The scene whose GUID this is.
-pub fn scene_for_guid(guid: &str) -> Option<SceneKind> {
-    let index = variables::GUIDS.iter().position(|g| *g == guid)?;
-    SceneKind::ALL.get(index).copied()
-}
-
-/// `` `name` (vr N) `` for messages.
-fn describe(var: &Variable) -> String {
-    format!("`{}` (vr {})", var.name, var.vr)
-}
-
-/// The FMI function family that reads and writes a type (enumerations use the Integer ones).
-fn type_name(t: VarType) -> &'static str {
-    match t {
-        VarType::Real => "Real",
-        VarType::Integer | VarType::Enumeration => "Integer",
-    }
-}
-
-/// Whether two parameter sets give the same initial state (the tunable `F`, `Omega` aside).
-fn same_fixed(a: &SceneParams, b: &SceneParams) -> bool {
-    let mut a = a.clone();
-    a.forcing_amplitude = b.forcing_amplitude;
-    a.forcing_frequency = b.forcing_frequency;
-    a == *b
-}
-
-fn f_ctrl_start(kind: SceneKind) -> f64 {
-    variables::by_name("f_ctrl")
-        .and_then(|v| v.start[kind.index()])
-        .unwrap_or(0.0)
+/// Whether two parameter sets give the same initial state (the tunable ones aside).
+pub(crate) fn same_fixed(scene: &Scene, a: &ParamValues, b: &ParamValues) -> bool {
+    scene
+        .params
+        .iter()
+        .zip(a.0.iter().zip(&b.0))
+        .all(|(p, (x, y))| p.variability == Variability::Tunable || x == y)
 }
 
 #[repr(C)]
@@ -183,14 +163,15 @@ pub struct Instance {
     /// First field, so it can be checked through a raw pointer before anything else is read.
     magic: u64,
     pub log: Logger,
-    kind: SceneKind,
+    interface: Interface,
     state: FmiState,
     resource_location: Option<String>,
     resource_dir: Option<PathBuf>,
     experiment: Experiment,
     /// The parameter values the host set (the simulation is built from them).
-    params: SceneParams,
-    f_ctrl: f64,
+    params: ParamValues,
+    /// The inputs the host set (`None`: the start value).
+    inputs: Vec<Option<f64>>,
     /// From `fmi2ExitInitializationMode` on: the running simulation. Before: possibly the initial
     /// state built for an early output request, at `t = 0`, reused if the parameters still fit.
     sim: Option<Simulation>,
@@ -198,7 +179,7 @@ pub struct Instance {
 
 impl Instance {
     pub fn new(
-        kind: SceneKind,
+        interface: Interface,
         log: Logger,
         resource_location: Option<String>,
         resource_dir: Option<PathBuf>,
@@ -206,13 +187,13 @@ impl Instance {
         Instance {
             magic: INSTANCE_MAGIC,
             log,
-            kind,
+            params: interface.scene.defaults(),
+            inputs: vec![None; interface.scene.inputs.len()],
+            interface,
             state: FmiState::Instantiated,
             resource_location,
             resource_dir,
             experiment: Experiment::default(),
-            params: SceneParams::defaults(kind),
-            f_ctrl: f_ctrl_start(kind),
             sim: None,
         }
     }
@@ -241,15 +222,24 @@ impl Instance {
         drop(Box::from_raw(inst as *mut Instance));
     }
 
-    pub fn kind(&self) -> SceneKind {
-        self.kind
+    pub fn scene(&self) -> &Arc<Scene> {
+        &self.interface.scene
+    }
+
+    pub fn interface(&self) -> &Interface {
+        &self.interface
+    }
+
+    /// The value of input `i` the next step holds: the host's, or its start value.
+    pub(crate) fn input_value(&self, i: usize) -> f64 {
+        self.inputs[i].unwrap_or_else(|| input_start(self.scene(), i, &self.params))
     }
 
     pub fn state(&self) -> FmiState {
         self.state
     }
 
-    pub fn params(&self) -> &SceneParams {
+    pub fn params(&self) -> &ParamValues {
         &self.params
     }
 
@@ -369,8 +359,8 @@ impl Instance {
     /// settings are kept. The initial state already computed is kept for reuse.
     pub fn reset(&mut self) -> FmiResult {
         self.require(mask::ANY)?;
-        self.params = SceneParams::defaults(self.kind);
-        self.f_ctrl = f_ctrl_start(self.kind);
+        self.params = self.scene().defaults();
+        self.inputs.fill(None);
         self.experiment = Experiment::default();
         if let Some(sim) = &mut self.sim {
             sim.reset();
@@ -388,219 +378,54 @@ impl Instance {
 
     /// The simulation at `t = 0` for the current parameters: the kept one if its fixed
     /// parameters still match, else a new one (validation + initial static solve).
-    fn initial_simulation(&mut self) -> FmiResult<&mut Simulation> {
+    pub(crate) fn initial_simulation(&mut self) -> FmiResult<&mut Simulation> {
+        let scene = self.scene().clone();
         let reusable = self
             .sim
             .as_ref()
-            .is_some_and(|s| same_fixed(s.params(), &self.params));
+            .is_some_and(|s| same_fixed(&scene, s.values(), &self.params));
         if !reusable {
             self.sim = None; // release the old mesh before building the new one
-            self.params
-                .validate()
+            let sim = Simulation::new(scene.clone(), self.params.clone())
                 .map_err(|e| Failure::Error(e.to_string()))?;
-            let sim =
-                Simulation::new(self.params.clone()).map_err(|e| Failure::Error(e.to_string()))?;
             self.log
-                .event(|| format!("initial state of the {} scene computed", self.kind));
+                .event(|| format!("initial state of the {} scene computed", scene.name));
             self.sim = Some(sim);
         }
-        let (amplitude, frequency) = (self.params.forcing_amplitude, self.params.forcing_frequency);
         let sim = self.sim.as_mut().expect("just ensured");
-        if sim.params().forcing_amplitude != amplitude
-            || sim.params().forcing_frequency != frequency
-        {
-            sim.set_forcing(amplitude, frequency)
-                .map_err(|e| Failure::Error(e.to_string()))?;
+        for (i, &x) in self.params.0.iter().enumerate() {
+            if sim.values().get(i) != x {
+                sim.set_param(i, x)
+                    .map_err(|e| Failure::Error(e.to_string()))?;
+            }
         }
         Ok(sim)
     }
 
-    fn outputs(&mut self) -> FmiResult<Outputs> {
+    pub(crate) fn simulation_mut(&mut self) -> Option<&mut Simulation> {
+        self.sim.as_mut()
+    }
+
+    pub(crate) fn set_params_and_inputs(&mut self, params: ParamValues, inputs: &[(usize, f64)]) {
+        self.params = params;
+        for &(i, x) in inputs {
+            self.inputs[i] = Some(x);
+        }
+    }
+
+    /// The simulation the outputs are read from.
+    pub(crate) fn output_simulation(&mut self) -> FmiResult<&Simulation> {
         match self.state {
             FmiState::Instantiated | FmiState::InitializationMode => {
-                Ok(self.initial_simulation()?.outputs())
+                Ok(&*self.initial_simulation()?)
             }
             _ => match &self.sim {
-                Some(sim) => Ok(sim.outputs()),
+                Some(sim) => Ok(sim),
                 None => error(
                     "no simulation state to read outputs from (initialization failed); call fmi2Reset",
                 ),
             },
         }
-    }
-
-    // ----- values ------------------------------------------------------------------------------
-
-    /// The variable of this scene with value reference `vr` and type `ty`.
-    fn variable(&self, vr: u32, ty: VarType, func: &str) -> FmiResult<&'static Variable> {
-        let Some(var) = variables::by_vr(vr) else {
-            return error(format!("unknown value reference {vr}"));
-        };
-        if !var.scenes[self.kind.index()] {
-            return error(format!(
-                "{} is not a variable of the {} FMU",
-                describe(var),
-                self.kind
-            ));
-        }
-        if type_name(var.var_type) != type_name(ty) {
-            let actual = type_name(var.var_type);
-            return error(format!(
-                "{} is an {actual} variable, not {} (use {}{actual})",
-                describe(var),
-                type_name(ty),
-                &func[..7] // "fmi2Get" or "fmi2Set"
-            ));
-        }
-        Ok(var)
-    }
-
-    /// `fmi2GetBoolean` / `fmi2GetString` / the setters: this FMU has no such variables.
-    pub fn no_variables_of_type(&self, func: &str, type_name: &str, vrs: &[u32]) -> FmiResult {
-        self.require(if func.starts_with("fmi2Get") {
-            mask::GET
-        } else {
-            mask::SET
-        })?;
-        let Some(&vr) = vrs.first() else {
-            return Ok(());
-        };
-        match variables::by_vr(vr).filter(|v| v.scenes[self.kind.index()]) {
-            Some(var) => error(format!(
-                "{} is not a {type_name} variable: the {} FMU has no {type_name} variables",
-                describe(var),
-                self.kind
-            )),
-            None => error(format!(
-                "unknown value reference {vr}: the {} FMU has no {type_name} variables",
-                self.kind
-            )),
-        }
-    }
-
-    fn get_values(&mut self, func: &str, ty: VarType, vrs: &[u32]) -> FmiResult<Vec<f64>> {
-        self.require(mask::GET)?;
-        let vars = vrs
-            .iter()
-            .map(|&vr| self.variable(vr, ty, func))
-            .collect::<FmiResult<Vec<_>>>()?;
-        let needs_outputs = vars
-            .iter()
-            .any(|v| v.causality == Causality::Output && v.name != "newton_iterations");
-        // Before initialization nothing has been simulated: no work done, no error yet.
-        let outputs = if needs_outputs {
-            Some(self.outputs()?)
-        } else {
-            None
-        };
-        let values = vars
-            .iter()
-            .map(|var| match var.causality {
-                Causality::Parameter => self
-                    .params
-                    .get(var.name)
-                    .expect("every parameter has a value"),
-                Causality::Input => self.f_ctrl,
-                Causality::Output => match var.name {
-                    "newton_iterations" => self.newton_iterations(),
-                    name => outputs
-                        .as_ref()
-                        .and_then(|o| o.by_name(name))
-                        .unwrap_or_else(|| unreachable!("output `{name}` has no value")),
-                },
-            })
-            .collect();
-        self.log.trace(|| format!("{func}({vrs:?}) -> {values:?}"));
-        Ok(values)
-    }
-
-    fn newton_iterations(&self) -> f64 {
-        match self.state {
-            FmiState::Instantiated | FmiState::InitializationMode => 0.0,
-            _ => self
-                .sim
-                .as_ref()
-                .map_or(0.0, |s| s.last_newton_iterations() as f64),
-        }
-    }
-
-    pub fn get_real(&mut self, vrs: &[u32], out: &mut [f64]) -> FmiResult {
-        let values = self.get_values("fmi2GetReal", VarType::Real, vrs)?;
-        out.copy_from_slice(&values);
-        Ok(())
-    }
-
-    pub fn get_integer(&mut self, vrs: &[u32], out: &mut [i32]) -> FmiResult {
-        let values = self.get_values("fmi2GetInteger", VarType::Integer, vrs)?;
-        for (o, v) in out.iter_mut().zip(values) {
-            *o = v.clamp(i32::MIN as f64, i32::MAX as f64) as i32;
-        }
-        Ok(())
-    }
-
-    /// Checks every value first and applies them only if all are accepted.
-    fn set_values(&mut self, func: &str, ty: VarType, vrs: &[u32], values: &[f64]) -> FmiResult {
-        self.require(mask::SET)?;
-        let mut params = self.params.clone();
-        let mut f_ctrl = self.f_ctrl;
-        for (&vr, &value) in vrs.iter().zip(values) {
-            let var = self.variable(vr, ty, func)?;
-            let allowed = match (var.causality, var.variability) {
-                (Causality::Output, _) => {
-                    return error(format!("{} is an output: it cannot be set", describe(var)));
-                }
-                (Causality::Parameter, Variability::Fixed) => mask::FIXED_PARAMETER,
-                _ => mask::SET,
-            };
-            if allowed & self.state.bit() == 0 {
-                return error(format!(
-                    "{} is a {} {}: it can be set in {} only, not in {}",
-                    describe(var),
-                    format!("{:?}", var.variability).to_lowercase(),
-                    format!("{:?}", var.causality).to_lowercase(),
-                    state_list(allowed),
-                    self.state.name()
-                ));
-            }
-            match var.causality {
-                Causality::Parameter => {
-                    params
-                        .set(var.name, value)
-                        .map_err(|e| Failure::Error(format!("{e} (vr {vr})")))?;
-                }
-                _ => {
-                    if !var.admits(value) {
-                        let range = var.range_text().unwrap_or_else(|| "finite".to_string());
-                        return error(format!(
-                            "{}: {value} is out of range: must be {range}",
-                            describe(var)
-                        ));
-                    }
-                    f_ctrl = value;
-                }
-            }
-        }
-        let forcing_changed = params.forcing_amplitude != self.params.forcing_amplitude
-            || params.forcing_frequency != self.params.forcing_frequency;
-        if forcing_changed && self.state == FmiState::StepComplete {
-            if let Some(sim) = &mut self.sim {
-                sim.set_forcing(params.forcing_amplitude, params.forcing_frequency)
-                    .map_err(|e| Failure::Error(e.to_string()))?;
-            }
-        }
-        self.params = params;
-        self.f_ctrl = f_ctrl;
-        self.log.trace(|| format!("{func}({vrs:?}, {values:?})"));
-        Ok(())
-    }
-
-    pub fn set_real(&mut self, vrs: &[u32], values: &[f64]) -> FmiResult {
-        self.set_values("fmi2SetReal", VarType::Real, vrs, values)
-    }
-
-    pub fn set_integer(&mut self, vrs: &[u32], values: &[i32]) -> FmiResult {
-        let values: Vec<f64> = values.iter().map(|&v| v as f64).collect();
-        self.set_values("fmi2SetInteger", VarType::Integer, vrs, &values)
     }
 
     // ----- stepping ------------------------------------------------------------------------
@@ -630,11 +455,17 @@ impl Instance {
                 ));
             }
         }
-        let f_ctrl = self.f_ctrl;
+        let inputs: Vec<f64> = (0..self.inputs.len())
+            .map(|i| self.input_value(i))
+            .collect();
         let Some(sim) = self.sim.as_mut() else {
             return error("internal error: no simulation in state stepComplete");
         };
-        match sim.advance(h, f_ctrl) {
+        for (i, x) in inputs.into_iter().enumerate() {
+            sim.set_input(i, x)
+                .map_err(|e| Failure::Error(e.to_string()))?;
+        }
+        match sim.advance(h) {
             Ok(report) => {
                 self.log.trace(|| {
                     format!(
@@ -645,16 +476,8 @@ impl Instance {
                         report.cuts
                     )
                 });
-                // Sub-steps of half a forcing period or more sample the excitation at its
-                // midpoints only: the step converges but cannot represent the load.
-                let dt = h / report.substeps as f64;
-                let omega = sim.params().forcing_frequency;
-                if omega * dt >= std::f64::consts::PI && sim.params().forcing_amplitude != 0.0 {
-                    self.log.warning(&format!(
-                        "fmi2DoStep: sub-step {dt:e} s is at least half the forcing period \
-                         (Omega dt = {:.3} >= pi): the excitation is aliased; lower dt_max",
-                        omega * dt
-                    ));
+                if let Some(warning) = &report.warning {
+                    self.log.warning(&format!("fmi2DoStep: {warning}"));
                 }
                 Ok(())
             }
@@ -712,27 +535,27 @@ impl Instance {
             )
         });
         Ok(StateData {
-            kind: self.kind,
+            scene: self.scene().name.clone(),
             fmi_state: self.state,
             experiment: self.experiment.clone(),
             params: self.params.clone(),
-            f_ctrl: self.f_ctrl,
+            inputs: self.inputs.clone(),
             snapshot,
         })
     }
 
     /// Checks that an FMU state fits this instance (scene and element count).
-    pub fn check_compatible(&self, kind: SceneKind, elements: usize) -> FmiResult {
-        if kind != self.kind {
+    pub fn check_compatible(&self, scene: &str, elements: usize) -> FmiResult {
+        if scene != self.scene().name {
             return error(format!(
-                "the FMU state belongs to the {kind} scene, this instance is a {}",
-                self.kind
+                "the FMU state belongs to the {scene} scene, this instance is a {}",
+                self.scene().name
             ));
         }
-        if elements != self.params.elements {
+        if elements != self.params.elements() {
             return error(format!(
                 "the FMU state has {elements} elements, this instance has {} (set `elements` first)",
-                self.params.elements
+                self.params.elements()
             ));
         }
         Ok(())
@@ -740,7 +563,7 @@ impl Instance {
 
     pub fn set_fmu_state(&mut self, data: &StateData) -> FmiResult {
         self.require(mask::ANY)?;
-        self.check_compatible(data.kind, data.params.elements)?;
+        self.check_compatible(&data.scene, data.params.elements())?;
         let simulated = !matches!(
             data.fmi_state,
             FmiState::Instantiated | FmiState::InitializationMode
@@ -753,10 +576,11 @@ impl Instance {
         }
         match data.snapshot.as_ref().filter(|_| simulated) {
             Some(snapshot) => {
+                let scene = self.scene().clone();
                 let reusable = self
                     .sim
                     .as_ref()
-                    .is_some_and(|s| same_fixed(s.params(), &data.params));
+                    .is_some_and(|s| same_fixed(&scene, s.values(), &data.params));
                 if reusable {
                     let sim = self.sim.as_mut().expect("checked");
                     let backup = sim.snapshot();
@@ -766,7 +590,7 @@ impl Instance {
                         return error(e.to_string());
                     }
                 } else {
-                    let mut sim = Simulation::new(data.params.clone())
+                    let mut sim = Simulation::new(scene, data.params.clone())
                         .map_err(|e| Failure::Error(e.to_string()))?;
                     sim.restore(snapshot)
                         .map_err(|e| Failure::Error(e.to_string()))?;
@@ -783,7 +607,7 @@ impl Instance {
         }
         self.experiment = data.experiment.clone();
         self.params = data.params.clone();
-        self.f_ctrl = data.f_ctrl;
+        self.inputs.clone_from(&data.inputs);
         self.enter(data.fmi_state);
         self.log
             .event(|| format!("FMU state restored at t = {}", self.time()));

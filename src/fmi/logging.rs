@@ -11,17 +11,8 @@
 use super::types::{fmi2CallbackLogger, fmi2ComponentEnvironment, fmi2Status};
 use std::ffi::{CStr, CString};
 
-/// The log categories of the FMU, `(name, description)`. `modelDescription.xml`'s
-/// `<LogCategories>` is generated from this list, so the XML and the binary agree.
-pub const LOG_CATEGORIES: &[(&str, &str)] = &[
-    (
-        "logEvents",
-        "Changes of the FMU state: instantiation, initialization, termination, reset, FMU state get/set/serialization",
-    ),
-    ("logStatusWarning", "Warnings and discarded communication steps (fmi2Warning, fmi2Discard)"),
-    ("logStatusError", "Refused calls and arguments (fmi2Error); logged even when debug logging is off"),
-    ("logAll", "Every message, including a trace of every FMI function call"),
-];
+/// The log categories of the FMU, `(name, description)`, as declared in modelDescription.xml.
+pub use crate::packaging::model_description::LOG_CATEGORIES;
 
 /// One of [`LOG_CATEGORIES`]; the discriminant is the index there.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

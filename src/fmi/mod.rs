@@ -1,20 +1,26 @@
 //! FMI 2.0 Co-Simulation C API.
 //!
-//! One binary serves every scene: `fmi2Instantiate` picks the scene by its GUID
-//! ([`crate::variables::GUIDS`], indexed like `SCENE_NAMES`). Each instance is a boxed
-//! [`instance::Instance`] behind the opaque `fmi2Component`; there is no global state and no
-//! thread, so instances may live on different threads at once.
+//! One binary serves every scene: `fmi2Instantiate` reads the scene file from the FMU's
+//! `resources/`, checks it, and compares the GUID of the modelDescription.xml it generates with
+//! the host's ([`interface`]). Each instance is a boxed [`instance::Instance`] behind the opaque
+//! `fmi2Component`; there is no global state and no thread, so instances may live on different
+//! threads at once. This layer knows no physics: it maps value references to the scene's
+//! parameters, inputs and outputs and drives a [`crate::simulation::Simulation`].
 //!
 //! - [`types`]: the C types of the FMI 2.0 headers;
 //! - [`logging`]: log categories ([`logging::LOG_CATEGORIES`], also used for the XML) and the
 //!   per-instance logger;
-//! - [`instance`]: state machine, values, stepping (testable Rust);
+//! - [`interface`]: the scene of an FMU and its variables;
+//! - [`instance`]: state machine, stepping, FMU states (testable Rust);
+//! - [`values`]: getting and setting variables;
 //! - [`fmu_state`]: FMU state snapshots and their serialized form;
 //! - [`api`]: the exported `extern "C"` functions;
 //! - [`uri`]: `fmuResourceLocation` parsing.
 pub mod api;
 pub mod fmu_state;
 pub mod instance;
+pub mod interface;
 pub mod logging;
 pub mod types;
 pub mod uri;
+pub mod values;

@@ -15,9 +15,9 @@
 use super::newton::{
     chord_correction, inf_norm, newton_correction, NewtonFailure, NewtonSettings, NewtonStats,
 };
-use crate::model::element::cayley;
+use crate::model::element::{cayley, Vector6};
 use crate::model::rod::ROTATION;
-use crate::model::{LoadCase, Rod};
+use crate::model::{LoadSet, Rod};
 use crate::solver::BlockTridiagonal;
 use serde::{Deserialize, Serialize};
 
@@ -105,7 +105,8 @@ impl Midpoint {
     }
 
     /// One step of size `dt` from `t_n`. On failure `state` is untouched. `rod` must be the rod
-    /// given to [`Midpoint::new`] (its mass and damping are cached per step size).
+    /// given to [`Midpoint::new`] (its mass and damping are cached per step size). Constrained
+    /// dofs move by the increments in `prescribed` (`(dof, increment)`; dofs not listed stay).
     ///
     /// Newton with the exact Jacobian; after each Newton correction the next residual is first
     /// solved with the same factorization (a chord correction: a residual evaluation and two
@@ -121,10 +122,11 @@ impl Midpoint {
     pub fn step(
         &mut self,
         rod: &Rod,
-        loads: &LoadCase,
+        loads: &LoadSet,
         state: &mut DynamicState,
         t_n: f64,
         dt: f64,
+        prescribed: &[(usize, f64)],
     ) -> Result<NewtonStats, NewtonFailure> {
         debug_assert_eq!(
             rod.dofs(),
@@ -143,6 +145,9 @@ impl Midpoint {
             *d = dt * v;
         }
         rod.zero_constrained(&mut self.du);
+        for &(dof, increment) in prescribed {
+            self.du[dof] = increment;
+        }
         // The inertia term's known part, -2/dt v_n.
         for (m, v) in self.inertia.iter_mut().zip(&state.v) {
             *m = -2.0 / dt * v;
@@ -224,7 +229,7 @@ impl Midpoint {
     fn residual(
         &mut self,
         rod: &Rod,
-        loads: &LoadCase,
+        loads: &LoadSet,
         state: &DynamicState,
         t_mid: f64,
         dt: f64,
@@ -283,5 +288,45 @@ impl Midpoint {
     /// The displacement increment `du` of the last successful step.
     pub fn last_increment(&self) -> &[f64] {
         &self.u_mid
+    }
+
+    /// The rows of `node` of the step's equation of motion, evaluated at the step just taken
+    /// (`state` after it, `t_mid` its midpoint): `M (v_(n+1) - v_n)/dt + C du/dt + f(u) -
+    /// f_ext(t_mid)`, with `f` the scheme's internal force. Zero at a free node (to solver
+    /// tolerance); at a held node it is the force the support exerts on the rod, averaged over
+    /// the step. Reads only the elements at `node`: O(1).
+    pub fn node_residual(
+        &self,
+        rod: &Rod,
+        loads: &LoadSet,
+        state: &DynamicState,
+        t_mid: f64,
+        dt: f64,
+        node: usize,
+    ) -> [f64; 3] {
+        let du = &self.u_mid;
+        let mut rows = [0.0; 3];
+        for (e, offset) in rod.elements_at(node) {
+            let d = Rod::element_dofs(du, e);
+            let u_end = Rod::element_dofs(&state.u, e);
+            let v_end = Rod::element_dofs(&state.v, e);
+            // v_n = 2 motion(du)/dt - v_(n+1), so (v_(n+1) - v_n)/dt = 2 (v_(n+1) - motion(du)/dt)/dt.
+            let acceleration = Vector6::from_fn(|k, _| {
+                2.0 * (v_end[k] - motion(self.scheme, (3 * e + k) % 3, d[k]) / dt) / dt
+            });
+            let inertia = rod.element_pattern_times(e, &acceleration, false)
+                + rod.element_pattern_times(e, &(d / dt), true);
+            let internal = match self.scheme {
+                Scheme::Midpoint => rod.element_internal_force(e, &(u_end - 0.5 * d)),
+                Scheme::EnergyMomentum => rod.element_discrete_gradient(e, &(u_end - d), &u_end),
+            };
+            for k in 0..3 {
+                rows[k] += inertia[offset + k] + internal[offset + k];
+            }
+        }
+        for (k, r) in rows.iter_mut().enumerate() {
+            *r -= loads.at(3 * node + k, t_mid);
+        }
+        rows
     }
 }

@@ -1,66 +1,217 @@
-//! External loads of fixed direction: `f_ext(t) = F cos(Omega t) q + P p`, with `q` the nodal
-//! vector of the unit excitation (uniform per length, or at the crown) and `p` that of a unit
-//! point force along `-e2` at `s = S/2` (constant preload plus the controller's `f_ctrl`).
+//! External loads of fixed direction: `f_ext(t) = sum_g A_g cos(Omega t) q_g + s`, where each
+//! harmonic group `g` (loads sharing one amplitude) has the summed nodal vector `q_g` of its
+//! loads at unit magnitude, and `s` is the steady part: the constant loads and the input loads
+//! (held over a communication step) times their nodal vectors. Steady loads with the same nodal
+//! vector are summed before they are spread, so a preload and a control force at one point act
+//! as one force, as a single load would.
 use super::rod::Rod;
 
+/// When a load acts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LoadTime {
+    Constant,
+    /// `magnitude cos(Omega t)`; loads with the same `group` share their magnitude.
+    Harmonic {
+        group: usize,
+    },
+    /// An input, held over a communication step.
+    Input,
+}
+
+/// Where a load acts, along a fixed direction: `component` 0 (`e1`) or 1 (`e2`), `sign` +-1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LoadShape {
+    /// At arc length `s`, shared by the shape functions when `s` falls inside an element.
+    Point { s: f64, component: usize, sign: f64 },
+    /// Uniform per unit length over the whole rod.
+    Distributed { component: usize, sign: f64 },
+}
+
+impl LoadShape {
+    /// The nodal forces of this load at unit magnitude.
+    pub fn nodal_vector(&self, rod: &Rod) -> Vec<f64> {
+        let mut out = vec![0.0; rod.dofs()];
+        match *self {
+            LoadShape::Point { s, component, sign } => {
+                let p = rod.point_at(s);
+                let (na, nb) = p.weights;
+                out[3 * p.element + component] += sign * na;
+                out[3 * (p.element + 1) + component] += sign * nb;
+            }
+            LoadShape::Distributed { component, sign } => {
+                for (e, el) in rod.elements.iter().enumerate() {
+                    let half = 0.5 * el.length;
+                    out[3 * e + component] += sign * half;
+                    out[3 * (e + 1) + component] += sign * half;
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Steady loads that share one nodal vector.
 #[derive(Clone, Debug, PartialEq)]
-pub struct LoadCase {
-    /// Nodal forces of the excitation with unit amplitude.
-    pub excitation_shape: Vec<f64>,
-    /// Nodal forces of a unit point force along `-e2` at `s = S/2`.
-    pub point_shape: Vec<f64>,
-    /// `F`
-    pub amplitude: f64,
+struct SteadyEntry {
+    shape: Vec<f64>,
+    loads: Vec<usize>,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadSet {
+    times: Vec<LoadTime>,
+    /// Per harmonic group: its summed unit nodal vector and current amplitude.
+    harmonic: Vec<(Vec<f64>, f64)>,
+    steady_entries: Vec<SteadyEntry>,
     /// `Omega`
     pub frequency: f64,
-    /// Constant point force at `s = S/2` along `-e2` (`P0 + f_ctrl`).
-    pub point_force: f64,
+    steady: Vec<f64>,
+    /// The constant and the input part of `steady` (for the energy ledger).
+    constant_part: Vec<f64>,
+    input_part: Vec<f64>,
 }
 
-/// Where the harmonic excitation acts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ExcitationKind {
-    /// Uniform load per unit length (the buckled beam).
-    Distributed,
-    /// Point load at `s = S/2` (the arches).
-    Crown,
-}
-
-impl LoadCase {
-    pub fn new(rod: &Rod, kind: ExcitationKind) -> LoadCase {
-        let mut excitation_shape = vec![0.0; rod.dofs()];
-        let mut point_shape = vec![0.0; rod.dofs()];
-        rod.add_point_transverse_load(&mut point_shape, rod.midspan(), 1.0);
-        match kind {
-            ExcitationKind::Distributed => {
-                rod.add_uniform_transverse_load(&mut excitation_shape, 1.0)
+impl LoadSet {
+    /// Loads `(where, when)` on `rod`, all with magnitude 0 until [`LoadSet::set_magnitudes`].
+    pub fn new(rod: &Rod, loads: &[(LoadShape, LoadTime)]) -> LoadSet {
+        let n = rod.dofs();
+        let groups = loads
+            .iter()
+            .filter_map(|(_, t)| match t {
+                LoadTime::Harmonic { group } => Some(group + 1),
+                _ => None,
+            })
+            .max()
+            .unwrap_or(0);
+        let mut harmonic = vec![(vec![0.0; n], 0.0); groups];
+        let mut steady_entries: Vec<SteadyEntry> = Vec::new();
+        for (i, (shape, time)) in loads.iter().enumerate() {
+            let q = shape.nodal_vector(rod);
+            match *time {
+                LoadTime::Harmonic { group } => {
+                    let sum = &mut harmonic[group].0;
+                    if sum.iter().all(|&x| x == 0.0) {
+                        sum.copy_from_slice(&q);
+                    } else {
+                        sum.iter_mut().zip(&q).for_each(|(a, b)| *a += b);
+                    }
+                }
+                LoadTime::Constant | LoadTime::Input => {
+                    match steady_entries.iter_mut().find(|e| e.shape == q) {
+                        Some(entry) => entry.loads.push(i),
+                        None => steady_entries.push(SteadyEntry {
+                            shape: q,
+                            loads: vec![i],
+                        }),
+                    }
+                }
             }
-            ExcitationKind::Crown => excitation_shape.copy_from_slice(&point_shape),
         }
-        LoadCase {
-            excitation_shape,
-            point_shape,
-            amplitude: 0.0,
+        LoadSet {
+            times: loads.iter().map(|(_, t)| *t).collect(),
+            harmonic,
+            steady_entries,
             frequency: 0.0,
-            point_force: 0.0,
+            steady: vec![0.0; n],
+            constant_part: vec![0.0; n],
+            input_part: vec![0.0; n],
         }
     }
 
-    /// Excitation amplitude factor `F cos(Omega t)`.
-    pub fn excitation(&self, t: f64) -> f64 {
-        self.amplitude * (self.frequency * t).cos()
+    /// Sets every load's magnitude (harmonic: its amplitude; loads of one group must agree)
+    /// and rebuilds the steady vector. Allocates nothing.
+    pub fn set_magnitudes(&mut self, magnitudes: &[f64]) {
+        for (m, t) in magnitudes.iter().zip(&self.times) {
+            if let LoadTime::Harmonic { group } = t {
+                self.harmonic[*group].1 = *m;
+            }
+        }
+        self.steady.fill(0.0);
+        self.constant_part.fill(0.0);
+        self.input_part.fill(0.0);
+        for entry in &self.steady_entries {
+            let mut total = 0.0;
+            let (mut constant, mut input) = (0.0, 0.0);
+            for &i in &entry.loads {
+                total += magnitudes[i];
+                match self.times[i] {
+                    LoadTime::Input => input += magnitudes[i],
+                    _ => constant += magnitudes[i],
+                }
+            }
+            for (k, q) in entry.shape.iter().enumerate() {
+                self.steady[k] += total * q;
+                self.constant_part[k] += constant * q;
+                self.input_part[k] += input * q;
+            }
+        }
+    }
+
+    /// `cos(Omega t)` times the amplitude of harmonic group `g`.
+    pub fn excitation(&self, g: usize, t: f64) -> f64 {
+        self.harmonic[g].1 * (self.frequency * t).cos()
     }
 
     /// `out += scale * f_ext(t)`.
     pub fn add_to(&self, t: f64, out: &mut [f64], scale: f64) {
-        let a = scale * self.excitation(t);
-        let p = scale * self.point_force;
-        for ((o, q), pp) in out
-            .iter_mut()
-            .zip(&self.excitation_shape)
-            .zip(&self.point_shape)
-        {
-            *o += a * q + p * pp;
+        match self.harmonic.as_slice() {
+            [] => {
+                for (o, s) in out.iter_mut().zip(&self.steady) {
+                    *o += scale * s;
+                }
+            }
+            [(q, _)] => {
+                let a = scale * self.excitation(0, t);
+                for ((o, q), s) in out.iter_mut().zip(q).zip(&self.steady) {
+                    *o += a * q + scale * s;
+                }
+            }
+            groups => {
+                for (o, s) in out.iter_mut().zip(&self.steady) {
+                    *o += scale * s;
+                }
+                for (g, (q, _)) in groups.iter().enumerate() {
+                    let a = scale * self.excitation(g, t);
+                    out.iter_mut().zip(q).for_each(|(o, q)| *o += a * q);
+                }
+            }
         }
+    }
+
+    /// The work of the loads over an increment `du` with the harmonic loads taken at `t`:
+    /// `(constant and harmonic, input)`.
+    pub fn work(&self, du: &[f64], t: f64) -> (f64, f64) {
+        let dot = |f: &[f64]| du.iter().zip(f).map(|(a, b)| a * b).sum::<f64>();
+        let harmonic: f64 = (0..self.harmonic.len())
+            .map(|g| self.excitation(g, t) * dot(&self.harmonic[g].0))
+            .sum();
+        (harmonic + dot(&self.constant_part), dot(&self.input_part))
+    }
+
+    /// The steady part (constant and input loads) of the nodal force at dof `k`.
+    pub fn steady_at(&self, k: usize) -> f64 {
+        self.steady[k]
+    }
+
+    /// The constant loads' nodal force at dof `k`.
+    pub fn constant_at(&self, k: usize) -> f64 {
+        self.constant_part[k]
+    }
+
+    /// The nodal force at dof `k` at time `t`.
+    pub fn at(&self, k: usize, t: f64) -> f64 {
+        let harmonic: f64 = (0..self.harmonic.len())
+            .map(|g| self.excitation(g, t) * self.harmonic[g].0[k])
+            .sum();
+        harmonic + self.steady[k]
+    }
+
+    /// The constant loads alone (the loads of the initial static state).
+    pub fn constant_vector(&self) -> &[f64] {
+        &self.constant_part
+    }
+
+    pub fn has_harmonic(&self) -> bool {
+        self.harmonic.iter().any(|(_, a)| *a != 0.0)
     }
 }

@@ -9,6 +9,6 @@ pub mod section;
 
 pub use element::Element;
 pub use geometry::ReferenceCurve;
-pub use loads::{ExcitationKind, LoadCase};
+pub use loads::{LoadSet, LoadShape, LoadTime};
 pub use rod::{PointOnRod, Rod};
 pub use section::Section;

@@ -79,8 +79,51 @@ impl Rod {
         self.fixed[3 * node + k] = true;
     }
 
-    fn element_dofs(x: &[f64], e: usize) -> Vector6 {
+    /// The six dofs of element `e` in a nodal vector.
+    pub fn element_dofs(x: &[f64], e: usize) -> Vector6 {
         Vector6::from_column_slice(&x[3 * e..3 * e + 6])
+    }
+
+    /// Element `e`'s part of `M x` (or, with `damping`, of `C x`) on its six dofs.
+    pub fn element_pattern_times(&self, e: usize, x: &Vector6, damping: bool) -> Vector6 {
+        let c = self.inertia[e].coefficients(damping);
+        let mut out = Vector6::zeros();
+        for k in 0..3 {
+            let (a, b) = (x[k], x[3 + k]);
+            out[k] = c[k] * (2.0 * a + b);
+            out[3 + k] = c[k] * (a + 2.0 * b);
+        }
+        out
+    }
+
+    /// The elements that hold node `i` (one at an end, two inside), with the offset of the
+    /// node's dofs in the element's six.
+    pub fn elements_at(&self, i: usize) -> impl Iterator<Item = (usize, usize)> {
+        let before = i.checked_sub(1).map(|e| (e, 3));
+        let after = (i < self.elements.len()).then_some((i, 0));
+        before.into_iter().chain(after)
+    }
+
+    /// Element `e`'s internal force on its six dofs.
+    pub fn element_internal_force(&self, e: usize, ue: &Vector6) -> Vector6 {
+        self.elements[e].internal_force(&self.section, ue)
+    }
+
+    /// Element `e`'s energy-momentum discrete gradient between `a` and `b`.
+    pub fn element_discrete_gradient(&self, e: usize, a: &Vector6, b: &Vector6) -> Vector6 {
+        self.elements[e].discrete_gradient(&self.section, a, b)
+    }
+
+    /// The rows of node `i` of `f_int(u)`: O(1).
+    pub fn node_internal_force(&self, u: &[f64], i: usize) -> [f64; 3] {
+        let mut rows = [0.0; 3];
+        for (e, offset) in self.elements_at(i) {
+            let f = self.element_internal_force(e, &Self::element_dofs(u, e));
+            for (k, r) in rows.iter_mut().enumerate() {
+                *r += f[offset + k];
+            }
+        }
+        rows
     }
 
     /// `f = f_int(u)` (overwrites `f`).

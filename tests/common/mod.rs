@@ -311,3 +311,46 @@ impl Drop for Table {
         println!("{}", self.0);
     }
 }
+
+// ----- scenes ---------------------------------------------------------------------------------
+
+/// The scene file `scenes/<name>.toml` of this repository.
+pub fn scene(name: &str) -> std::sync::Arc<georod::scene::Scene> {
+    let path = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
+    std::sync::Arc::new(georod::scene::Scene::load(&path).unwrap_or_else(|e| panic!("{e}")))
+}
+
+/// A scene's simulation with some parameters overridden by name.
+pub fn simulation(name: &str, overrides: &[(&str, f64)]) -> georod::simulation::Simulation {
+    let scene = scene(name);
+    let values = scene
+        .values_with(overrides.iter().copied())
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    georod::simulation::Simulation::new(scene, values).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// A parameter's current value.
+pub fn param(sim: &georod::simulation::Simulation, name: &str) -> f64 {
+    let i = sim.scene().param_index(name).expect("a parameter");
+    sim.values().get(i)
+}
+
+/// Sets a parameter (tunable, or fixed to its current value).
+pub fn set_param(sim: &mut georod::simulation::Simulation, name: &str, value: f64) {
+    let i = sim.scene().param_index(name).expect("a parameter");
+    sim.set_param(i, value).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// Sets an input by name.
+pub fn set_input(sim: &mut georod::simulation::Simulation, name: &str, value: f64) {
+    let i = (sim.scene().inputs.iter())
+        .position(|input| input.name == name)
+        .expect("an input");
+    sim.set_input(i, value).unwrap();
+}
+
+/// An output by name (sensors, reactions, energies).
+pub fn output(sim: &georod::simulation::Simulation, name: &str) -> f64 {
+    sim.output_by_name(name)
+        .unwrap_or_else(|| panic!("no output {name}"))
+}

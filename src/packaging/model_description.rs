@@ -1,16 +1,17 @@
-//! modelDescription.xml generation (FMI 2.0 Co-Simulation), one document per scene.
+//! modelDescription.xml of a scene (FMI 2.0 Co-Simulation).
 //!
-//! The document lists only the variables of its scene, in `variables.toml` order; the
-//! `ModelStructure` indices are 1-based positions in that scene's `ModelVariables`. The GUID is a
-//! hash of the document itself (with the `guid` attribute blank), so it changes exactly when the
-//! interface changes.
-use crate::spec::{Scene, Spec, Variable};
+//! The document lists the scene's variables in [`variables`] order; the `ModelStructure`
+//! indices are 1-based positions in `ModelVariables`. The GUID is a hash of the document itself
+//! (with the `guid` attribute blank), so it changes exactly when the interface changes. The FMU
+//! binary builds the same document from the scene file it finds in `resources/` and compares
+//! GUIDs: an altered scene file is refused at instantiation.
+use crate::scene::variables::{self, Causality, Variable};
+use crate::scene::{Scene, VarType};
 use std::fmt::Write;
 
-/// The log categories declared in every modelDescription.xml: (name, description). The FMI code
-/// exports the same names as `georod::fmi::logging::LOG_CATEGORIES`; the generated
-/// `variables::XML_LOG_CATEGORIES` lets a test compare the two.
-pub const LOG_CATEGORIES: [(&str, &str); 4] = [
+/// The log categories declared in every modelDescription.xml: (name, description); the FMI
+/// logger accepts exactly these.
+pub const LOG_CATEGORIES: &[(&str, &str)] = &[
     (
         "logEvents",
         "Changes of the FMU state: instantiation, initialization, termination, reset, FMU state get/set/serialization",
@@ -20,8 +21,8 @@ pub const LOG_CATEGORIES: [(&str, &str); 4] = [
     ("logAll", "Every message, including a trace of every FMI function call"),
 ];
 
-/// SI base-unit exponents of a unit name used in `variables.toml`:
-/// (kg, m, s, A, K, mol, cd, rad). `None` for an unknown name (a build error).
+/// SI base-unit exponents of a unit name: (kg, m, s, A, K, mol, cd, rad). `None` for a name
+/// this table does not know (declared without a base unit).
 fn base_unit(name: &str) -> Option<[i32; 8]> {
     Some(match name {
         "1" => [0, 0, 0, 0, 0, 0, 0, 0],
@@ -33,6 +34,9 @@ fn base_unit(name: &str) -> Option<[i32; 8]> {
         "rad/s" => [0, 0, -1, 0, 0, 0, 0, 1],
         "N" => [1, 1, -2, 0, 0, 0, 0, 0],
         "N/m" => [1, 0, -2, 0, 0, 0, 0, 0],
+        "N.m" => [1, 2, -2, 0, 0, 0, 0, 0],
+        "rad/s2" => [0, 0, -2, 0, 0, 0, 0, 1],
+        "m/s2" => [0, 1, -2, 0, 0, 0, 0, 0],
         "Pa" => [1, -1, -2, 0, 0, 0, 0, 0],
         "J" => [1, 2, -2, 0, 0, 0, 0, 0],
         "kg/m3" => [1, -3, 0, 0, 0, 0, 0, 0],
@@ -87,33 +91,28 @@ fn real(x: f64) -> String {
     format!("{x:?}")
 }
 
-/// An Integer value as an `xs:int` literal.
-fn integer(x: f64, what: &str) -> Result<String, String> {
-    if x.fract() != 0.0 || x.abs() > f64::from(i32::MAX) {
-        return Err(format!("{what}: {x} is not a 32-bit integer"));
-    }
-    Ok(format!("{}", x as i64))
-}
-
 /// The generated document of one scene.
 pub struct ModelDescription {
     pub xml: String,
     pub guid: String,
 }
 
+fn number(v: &Variable, x: f64) -> String {
+    match v.var_type {
+        VarType::Real => real(x),
+        VarType::Integer | VarType::Enumeration => format!("{}", x as i64),
+    }
+}
+
 /// The modelDescription.xml of `scene`.
-pub fn model_description(spec: &Spec, scene: &Scene) -> Result<ModelDescription, String> {
-    let vars: Vec<&Variable> = spec
-        .variables
-        .iter()
-        .filter(|v| v.in_scene(&scene.name))
-        .collect();
+pub fn model_description(scene: &Scene) -> ModelDescription {
+    let vars = variables::variables(scene);
     let mut x = String::new();
     let w = &mut x;
     let _ = writeln!(w, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
         w,
-        r#"<fmiModelDescription fmiVersion="2.0" modelName="{name}" guid="" description="{desc}" version="{ver}" license="{lic}" generationTool="georod build.rs" variableNamingConvention="flat" numberOfEventIndicators="0">"#,
+        r#"<fmiModelDescription fmiVersion="2.0" modelName="{name}" guid="" description="{desc}" version="{ver}" license="{lic}" generationTool="georod {ver}" variableNamingConvention="structured" numberOfEventIndicators="0">"#,
         name = escape(&scene.name),
         desc = escape(&scene.description),
         ver = escape(env!("CARGO_PKG_VERSION")),
@@ -125,16 +124,9 @@ pub fn model_description(spec: &Spec, scene: &Scene) -> Result<ModelDescription,
         escape(&scene.name)
     );
 
-    // Units, in order of first use.
     let mut units: Vec<&str> = Vec::new();
     for v in &vars {
-        if let Some(u) = v.unit_for(&scene.name) {
-            if v.var_type != "Real" {
-                return Err(format!(
-                    "variable `{}`: only Real variables have a unit",
-                    v.name
-                ));
-            }
+        if let Some(u) = v.unit.as_deref() {
             if !units.contains(&u) {
                 units.push(u);
             }
@@ -143,54 +135,42 @@ pub fn model_description(spec: &Spec, scene: &Scene) -> Result<ModelDescription,
     if !units.is_empty() {
         let _ = writeln!(w, "  <UnitDefinitions>");
         for u in &units {
-            let exps = base_unit(u).ok_or_else(|| {
-                format!("unit `{u}`: unknown; add its SI base-unit exponents to build/xml.rs")
-            })?;
-            let attrs: String = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"]
-                .iter()
-                .zip(exps)
-                .filter(|(_, e)| *e != 0)
-                .map(|(n, e)| format!(r#" {n}="{e}""#))
-                .collect();
-            let _ = writeln!(w, r#"    <Unit name="{}">"#, escape(u));
-            let _ = writeln!(w, "      <BaseUnit{attrs}/>");
-            let _ = writeln!(w, "    </Unit>");
+            match base_unit(u) {
+                Some(exps) => {
+                    let attrs: String = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"]
+                        .iter()
+                        .zip(exps)
+                        .filter(|(_, e)| *e != 0)
+                        .map(|(n, e)| format!(r#" {n}="{e}""#))
+                        .collect();
+                    let _ = writeln!(w, r#"    <Unit name="{}">"#, escape(u));
+                    let _ = writeln!(w, "      <BaseUnit{attrs}/>");
+                    let _ = writeln!(w, "    </Unit>");
+                }
+                None => {
+                    let _ = writeln!(w, r#"    <Unit name="{}"/>"#, escape(u));
+                }
+            }
         }
         let _ = writeln!(w, "  </UnitDefinitions>");
     }
 
-    // Enumeration types used by this scene.
-    let used: Vec<&str> = vars
-        .iter()
-        .filter_map(|v| v.declared_type.as_deref())
-        .collect();
-    let types: Vec<_> = spec
-        .types
-        .iter()
-        .filter(|t| used.contains(&t.name.as_str()))
-        .collect();
-    if !types.is_empty() {
+    if vars.iter().any(|v| v.declared_type == Some("Integrator")) {
         let _ = writeln!(w, "  <TypeDefinitions>");
-        for t in types {
+        let _ = writeln!(
+            w,
+            r#"    <SimpleType name="Integrator" description="Time integration scheme">"#
+        );
+        let _ = writeln!(w, "      <Enumeration>");
+        for (name, value, desc) in INTEGRATORS {
             let _ = writeln!(
                 w,
-                r#"    <SimpleType name="{}" description="{}">"#,
-                escape(&t.name),
-                escape(&t.description)
+                r#"        <Item name="{name}" value="{value}" description="{}"/>"#,
+                escape(desc)
             );
-            let _ = writeln!(w, "      <Enumeration>");
-            for item in &t.items {
-                let _ = writeln!(
-                    w,
-                    r#"        <Item name="{}" value="{}" description="{}"/>"#,
-                    escape(&item.name),
-                    item.value,
-                    escape(&item.description)
-                );
-            }
-            let _ = writeln!(w, "      </Enumeration>");
-            let _ = writeln!(w, "    </SimpleType>");
         }
+        let _ = writeln!(w, "      </Enumeration>");
+        let _ = writeln!(w, "    </SimpleType>");
         let _ = writeln!(w, "  </TypeDefinitions>");
     }
 
@@ -205,62 +185,58 @@ pub fn model_description(spec: &Spec, scene: &Scene) -> Result<ModelDescription,
     }
     let _ = writeln!(w, "  </LogCategories>");
 
+    let e = scene.experiment;
     let _ = writeln!(
         w,
         r#"  <DefaultExperiment startTime="{}" stopTime="{}" stepSize="{}"/>"#,
-        real(scene.start_time),
-        real(scene.stop_time),
-        real(scene.step_size)
+        real(e.start),
+        real(e.stop),
+        real(e.step)
     );
 
     let _ = writeln!(w, "  <ModelVariables>");
     let mut outputs = Vec::new();
     for (i, v) in vars.iter().enumerate() {
         let index = i + 1;
-        let ctx = format!("variable `{}`", v.name);
         let _ = writeln!(w, "    <!-- index=\"{index}\" -->");
-        let initial = match v.causality.as_str() {
-            "parameter" => r#" initial="exact""#,
-            "output" => {
+        let (causality, initial) = match v.causality {
+            Causality::Parameter => ("parameter", r#" initial="exact""#),
+            Causality::Input => ("input", ""),
+            Causality::Output => {
                 outputs.push(index);
-                r#" initial="calculated""#
+                ("output", r#" initial="calculated""#)
             }
-            _ => "",
         };
         let _ = writeln!(
             w,
-            r#"    <ScalarVariable name="{}" valueReference="{}" description="{}" causality="{}" variability="{}"{initial}>"#,
+            r#"    <ScalarVariable name="{}" valueReference="{}" description="{}" causality="{causality}" variability="{}"{initial}>"#,
             escape(&v.name),
             v.vr,
             escape(&v.description),
-            v.causality,
-            v.variability,
+            v.timing.name(),
         );
         let mut attrs = String::new();
-        let is_real = v.var_type == "Real";
-        let fmt = |x: f64| {
-            if is_real {
-                Ok(real(x))
-            } else {
-                integer(x, &ctx)
-            }
-        };
-        if let Some(t) = &v.declared_type {
-            let _ = write!(attrs, r#" declaredType="{}""#, escape(t));
+        if let Some(t) = v.declared_type {
+            let _ = write!(attrs, r#" declaredType="{t}""#);
         }
-        if let Some(u) = v.unit_for(&scene.name) {
+        if let Some(u) = &v.unit {
             let _ = write!(attrs, r#" unit="{}""#, escape(u));
         }
-        if let Some(m) = v.min_value() {
-            let _ = write!(attrs, r#" min="{}""#, fmt(m)?);
+        if let Some(m) = v.range.min {
+            let _ = write!(attrs, r#" min="{}""#, number(v, m));
         }
-        if let Some(m) = v.max_value() {
-            let _ = write!(attrs, r#" max="{}""#, fmt(m)?);
+        if let Some(m) = v.range.max {
+            let _ = write!(attrs, r#" max="{}""#, number(v, m));
         }
-        if let Some(s) = v.start_for(&scene.name) {
-            let _ = write!(attrs, r#" start="{}""#, fmt(s)?);
+        if let Some(s) = v.start {
+            let _ = write!(attrs, r#" start="{}""#, number(v, s));
         }
-        let _ = writeln!(w, "      <{}{attrs}/>", v.var_type);
+        let element = match v.var_type {
+            VarType::Real => "Real",
+            VarType::Integer => "Integer",
+            VarType::Enumeration => "Enumeration",
+        };
+        let _ = writeln!(w, "      <{element}{attrs}/>");
         let _ = writeln!(w, "    </ScalarVariable>");
     }
     let _ = writeln!(w, "  </ModelVariables>");
@@ -269,21 +245,28 @@ pub fn model_description(spec: &Spec, scene: &Scene) -> Result<ModelDescription,
     // `dependencies` attribute each depends on all knowns.
     let _ = writeln!(w, "  <ModelStructure>");
     if !outputs.is_empty() {
-        let _ = writeln!(w, "    <Outputs>");
-        for i in &outputs {
-            let _ = writeln!(w, r#"      <Unknown index="{i}"/>"#);
+        for list in ["Outputs", "InitialUnknowns"] {
+            let _ = writeln!(w, "    <{list}>");
+            for i in &outputs {
+                let _ = writeln!(w, r#"      <Unknown index="{i}"/>"#);
+            }
+            let _ = writeln!(w, "    </{list}>");
         }
-        let _ = writeln!(w, "    </Outputs>");
-        let _ = writeln!(w, "    <InitialUnknowns>");
-        for i in &outputs {
-            let _ = writeln!(w, r#"      <Unknown index="{i}"/>"#);
-        }
-        let _ = writeln!(w, "    </InitialUnknowns>");
     }
     let _ = writeln!(w, "  </ModelStructure>");
     let _ = writeln!(w, "</fmiModelDescription>");
 
     let guid = guid_text(fnv1a_128(x.as_bytes()));
     let xml = x.replacen(r#"guid="""#, &format!(r#"guid="{guid}""#), 1);
-    Ok(ModelDescription { xml, guid })
+    ModelDescription { xml, guid }
 }
+
+/// The items of the `Integrator` enumeration: (name, value, description).
+pub const INTEGRATORS: [(&str, i32, &str); 2] = [
+    ("midpoint", 1, "Implicit midpoint rule (symplectic, conserves momenta)"),
+    (
+        "energy_momentum",
+        2,
+        "Energy-momentum scheme (discrete gradient, Cayley rotations): conserves energy, linear and angular momentum",
+    ),
+];

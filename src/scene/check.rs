@@ -1,0 +1,705 @@
+//! From a scene file's text to a checked [`Scene`]: types and key names (serde), then every
+//! value, every name and every reference, then the mechanics that can be judged without
+//! solving anything (supports that leave a rigid-body motion free, supports off the mesh).
+use super::file::{LoadFile, ParameterFile, SceneFile, SensorFile, SupportFile};
+use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
+use super::variables;
+use super::{
+    Branch, DefaultExperiment, Direction, Geometry, Initial, InitialState, Input, InputKind, Load,
+    LoadKind, Quantity, Scene, SceneError, Sensor, Slot, Support, TimeLaw, DOF_NAMES,
+};
+use std::collections::BTreeSet;
+
+/// Default shape samples when `[shape]` is absent.
+const DEFAULT_SHAPE_POINTS: usize = 21;
+const MAX_SHAPE_POINTS: usize = 10_000;
+
+struct Checker<'a> {
+    file: &'a str,
+}
+
+impl Checker<'_> {
+    fn err<T>(&self, key: impl Into<String>, message: impl Into<String>) -> Result<T, SceneError> {
+        Err(SceneError {
+            file: self.file.to_string(),
+            key: key.into(),
+            message: message.into(),
+        })
+    }
+
+    fn required<T>(&self, value: Option<T>, key: &str, what: &str) -> Result<T, SceneError> {
+        match value {
+            Some(v) => Ok(v),
+            None => self.err(key, format!("missing: {what}")),
+        }
+    }
+
+    /// A name usable as an FMI variable or model identifier: a C identifier.
+    fn identifier(&self, name: Option<&String>, key: &str) -> Result<String, SceneError> {
+        let name = self.required(name, key, "a name (a C identifier: letters, digits, _)")?;
+        let mut chars = name.chars();
+        let ok = chars
+            .next()
+            .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+            && chars.all(|c| c.is_ascii_alphanumeric() || c == '_');
+        if !ok {
+            return self.err(
+                key,
+                format!("`{name}` is not a C identifier (letters, digits and _, not starting with a digit)"),
+            );
+        }
+        Ok(name.clone())
+    }
+
+    fn station(&self, at: Option<f64>, key: &str) -> Result<f64, SceneError> {
+        let at = self.required(at, key, "a station: a fraction of the arc length in [0, 1]")?;
+        if !(0.0..=1.0).contains(&at) {
+            return self.err(
+                key,
+                format!("{at} is out of range: a station must be in [0, 1]"),
+            );
+        }
+        Ok(at)
+    }
+
+    fn one_of(&self, value: &str, allowed: &[&str], key: &str) -> Result<usize, SceneError> {
+        match allowed.iter().position(|a| *a == value) {
+            Some(i) => Ok(i),
+            None => self.err(
+                key,
+                format!(
+                    "`{value}` is not allowed: must be one of {}",
+                    quoted(allowed)
+                ),
+            ),
+        }
+    }
+
+    /// A value slot: a number, a parameter name, or `-name`.
+    fn slot(&self, value: &toml::Value, params: &[Param], key: &str) -> Result<Slot, SceneError> {
+        match value {
+            toml::Value::Float(x) if x.is_finite() => Ok(Slot::Number(*x)),
+            toml::Value::Integer(i) => Ok(Slot::Number(*i as f64)),
+            toml::Value::String(s) => {
+                let (sign, name) = match s.strip_prefix('-') {
+                    Some(rest) => (-1.0, rest),
+                    None => (1.0, s.as_str()),
+                };
+                match params.iter().position(|p| p.name == name) {
+                    Some(index) => Ok(Slot::Param { index, sign }),
+                    None => {
+                        let names: Vec<&str> = params.iter().map(|p| p.name.as_str()).collect();
+                        self.err(
+                            key,
+                            format!(
+                                "`{name}` is not a declared parameter (declare it with [[parameter]]; \
+                                 parameters: {})",
+                                names.join(", ")
+                            ),
+                        )
+                    }
+                }
+            }
+            other => self.err(
+                key,
+                format!("{other} is not a value: write a number, a parameter name, or -name"),
+            ),
+        }
+    }
+}
+
+fn quoted(items: &[&str]) -> String {
+    items
+        .iter()
+        .map(|s| format!("\"{s}\""))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+fn entry(table: &str, index: usize, name: Option<&String>, key: &str) -> String {
+    match name {
+        Some(n) => format!("[[{table}]] #{} \"{n}\", key `{key}`", index + 1),
+        None => format!("[[{table}]] #{}, key `{key}`", index + 1),
+    }
+}
+
+pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
+    let c = Checker { file };
+    if text.trim().is_empty() {
+        return c.err(
+            "",
+            "the file is empty: a scene needs at least `name`, [geometry] and one [[support]] \
+             (see docs/scenes.md)",
+        );
+    }
+    let raw: SceneFile = toml::from_str(text).map_err(|e| {
+        let key = e.span().map_or(String::new(), |span| {
+            let line = text[..span.start].matches('\n').count() + 1;
+            format!("line {line}")
+        });
+        SceneError {
+            file: file.to_string(),
+            key,
+            message: e.message().trim().to_string(),
+        }
+    })?;
+    let name = c.identifier(raw.name.as_ref(), "name")?;
+    let experiment = experiment(&c, &raw)?;
+    let (geometry, span, rise) = geometry(&c, &raw)?;
+
+    let harmonic = raw
+        .load
+        .iter()
+        .any(|l| l.time.as_deref() == Some("harmonic"));
+    let initial_raw = raw.initial.as_ref();
+    let branch = initial_raw.and_then(|i| i.branch.as_deref());
+    let needs = Needs {
+        harmonic,
+        arc: geometry == Geometry::Arc,
+        branch: branch.is_some(),
+    };
+    let mut params = params::standard_params(&needs);
+    params[super::Std::Span as usize].start = span;
+    if let Some(h) = rise {
+        let i = params.iter().position(|p| p.name == "H").expect("arc");
+        params[i].start = h;
+    }
+    apply_defaults(&c, &raw, &mut params, harmonic)?;
+    for (i, p) in raw.parameter.iter().enumerate() {
+        let param = scene_parameter(&c, i, p, &params)?;
+        params.push(param);
+    }
+
+    let mut inputs = Vec::new();
+    let supports = supports(&c, &raw.support, &params, &mut inputs)?;
+    let loads = loads(&c, &raw.load, &mut params, &mut inputs)?;
+    let sensors = raw
+        .sensor
+        .iter()
+        .enumerate()
+        .map(|(i, s)| sensor(&c, i, s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let shape_points = match raw.shape.as_ref().map(|s| s.points) {
+        None => DEFAULT_SHAPE_POINTS,
+        Some(None) => return c.err("shape.points", "missing: the number of shape samples"),
+        Some(Some(n)) if n == 0 || (2..=MAX_SHAPE_POINTS as i64).contains(&n) => n as usize,
+        Some(Some(n)) => {
+            return c.err(
+                "shape.points",
+                format!(
+                "{n} is out of range: must be 0 (no shape outputs) or in [2, {MAX_SHAPE_POINTS}]"
+            ),
+            )
+        }
+    };
+    let initial = initial(&c, &raw, &sensors, &params)?;
+
+    let scene = Scene {
+        name,
+        description: raw.description.trim().to_string(),
+        experiment,
+        geometry,
+        params,
+        supports,
+        loads,
+        sensors,
+        inputs,
+        shape_points,
+        initial,
+        source: text.to_string(),
+    };
+    if let Err((key, message)) = variables::check_names(&scene) {
+        return c.err(key, message);
+    }
+    if scene.initial.state == InitialState::Static {
+        if let Some(free) = free_rigid_motion(&scene, span, rise) {
+            return c.err(
+                "[[support]]",
+                format!(
+                    "the supports leave the rod free to {free}: it has no static equilibrium. \
+                     Hold more degrees of freedom, or start from [initial] state = \"reference\""
+                ),
+            );
+        }
+    }
+    if let Err(e) = scene.check_mesh(scene.defaults().elements()) {
+        return c.err("defaults.elements", e.message);
+    }
+    Ok(scene)
+}
+
+fn experiment(c: &Checker, raw: &SceneFile) -> Result<DefaultExperiment, SceneError> {
+    let e = raw.experiment.as_ref();
+    let x = DefaultExperiment {
+        start: e.and_then(|e| e.start).unwrap_or(0.0),
+        stop: e.and_then(|e| e.stop).unwrap_or(0.1),
+        step: e.and_then(|e| e.step).unwrap_or(1e-4),
+    };
+    if !(x.start.is_finite() && x.stop.is_finite() && x.stop > x.start) {
+        return c.err(
+            "experiment.stop",
+            format!(
+                "{} must be finite and greater than start = {}",
+                x.stop, x.start
+            ),
+        );
+    }
+    if !(x.step.is_finite() && x.step > 0.0) {
+        return c.err(
+            "experiment.step",
+            format!("{} must be finite and > 0", x.step),
+        );
+    }
+    Ok(x)
+}
+
+fn geometry(c: &Checker, raw: &SceneFile) -> Result<(Geometry, f64, Option<f64>), SceneError> {
+    let g = c.required(raw.geometry.as_ref(), "[geometry]", "shape and L")?;
+    let shape = c.required(
+        g.shape.as_deref(),
+        "geometry.shape",
+        "\"straight\" or \"arc\"",
+    )?;
+    let geometry = [Geometry::Straight, Geometry::Arc]
+        [c.one_of(shape, &["straight", "arc"], "geometry.shape")?];
+    let span = c.required(g.span, "geometry.L", "the span (length of a straight rod)")?;
+    if !(span.is_finite() && span > 0.0) {
+        return c.err("geometry.L", format!("{span} is out of range: must be > 0"));
+    }
+    let rise = match (geometry, g.rise) {
+        (Geometry::Straight, None) => None,
+        (Geometry::Straight, Some(_)) => {
+            return c.err(
+                "geometry.H",
+                "a straight rod has no rise (H is for shape = \"arc\")",
+            )
+        }
+        (Geometry::Arc, None) => return c.err("geometry.H", "missing: the rise of the arc"),
+        (Geometry::Arc, Some(h)) if h.is_finite() && h > 0.0 && h <= 0.5 * span => Some(h),
+        (Geometry::Arc, Some(h)) => {
+            return c.err(
+                "geometry.H",
+                format!(
+                    "{h} is out of range: must be in (0, L/2] = (0, {}]",
+                    0.5 * span
+                ),
+            )
+        }
+    };
+    Ok((geometry, span, rise))
+}
+
+fn apply_defaults(
+    c: &Checker,
+    raw: &SceneFile,
+    params: &mut [Param],
+    harmonic: bool,
+) -> Result<(), SceneError> {
+    for (name, value) in &raw.defaults {
+        let key = format!("defaults.{name}");
+        if !params::default_settable(name) {
+            return c.err(
+                key,
+                "not a standard parameter with a default here (allowed: E, nu, rho, d, b, h, \
+                 elements, dt_max, integrator, and F, Omega with a harmonic load; L and H come \
+                 from [geometry])",
+            );
+        }
+        let Some(p) = params.iter_mut().find(|p| &p.name == name) else {
+            debug_assert!(!harmonic);
+            return c.err(
+                key,
+                "F and Omega exist only when a [[load]] has time = \"harmonic\"",
+            );
+        };
+        let x = match value {
+            toml::Value::Float(x) => *x,
+            toml::Value::Integer(i) => *i as f64,
+            other => return c.err(key, format!("{other} is not a number")),
+        };
+        if let Err(e) = p.check(x) {
+            return c.err(key, e.message);
+        }
+        p.start = x;
+    }
+    Ok(())
+}
+
+fn scene_parameter(
+    c: &Checker,
+    i: usize,
+    p: &ParameterFile,
+    existing: &[Param],
+) -> Result<Param, SceneError> {
+    let key = |k: &str| entry("parameter", i, p.name.as_ref(), k);
+    let name = c.identifier(p.name.as_ref(), &key("name"))?;
+    if params::is_standard_name(&name) || existing.iter().any(|q| q.name == name) {
+        return c.err(
+            key("name"),
+            format!("`{name}` is already a parameter of this scene"),
+        );
+    }
+    let start = c.required(p.start, &key("start"), "a start value")?;
+    let variability = match p.variability.as_deref() {
+        None => Variability::Fixed,
+        Some(v) => [Variability::Fixed, Variability::Tunable]
+            [c.one_of(v, &["fixed", "tunable"], &key("variability"))?],
+    };
+    let range = Range {
+        min: p.min,
+        max: p.max,
+        ..Range::ANY
+    };
+    if range.min.zip(range.max).is_some_and(|(a, b)| a > b) {
+        return c.err(key("max"), "must not be below min");
+    }
+    let param = Param {
+        name,
+        vr: SCENE_PARAM_VR + i as u32,
+        var_type: VarType::Real,
+        variability,
+        unit: p.unit.clone().filter(|u| !u.is_empty()),
+        description: p.description.trim().to_string(),
+        start,
+        range,
+    };
+    if let Err(e) = param.check(start) {
+        return c.err(key("start"), e.message);
+    }
+    Ok(param)
+}
+
+fn supports(
+    c: &Checker,
+    raw: &[SupportFile],
+    params: &[Param],
+    inputs: &mut Vec<Input>,
+) -> Result<Vec<Support>, SceneError> {
+    let mut out: Vec<Support> = Vec::new();
+    for (i, s) in raw.iter().enumerate() {
+        let key = |k: &str| entry("support", i, s.name.as_ref(), k);
+        let name = c.identifier(s.name.as_ref(), &key("name"))?;
+        let at = c.station(s.at, &key("at"))?;
+        if let Some(other) = out.iter().find(|o| (o.at - at).abs() < 1e-12) {
+            return c.err(
+                key("at"),
+                format!(
+                    "support `{}` is already at {at}: hold both sets of dofs in one support",
+                    other.name
+                ),
+            );
+        }
+        let fix = c.required(
+            s.fix.as_ref(),
+            &key("fix"),
+            "the held dofs, a subset of [\"u1\", \"u2\", \"w\"]",
+        )?;
+        let mut fixed = [false; 3];
+        for dof in fix {
+            let k = c.one_of(dof, &DOF_NAMES, &key("fix"))?;
+            if fixed[k] {
+                return c.err(key("fix"), format!("\"{dof}\" is listed twice"));
+            }
+            fixed[k] = true;
+        }
+        if !fixed.iter().any(|&f| f) {
+            return c.err(
+                key("fix"),
+                "a support must hold at least one dof of u1, u2, w",
+            );
+        }
+        let mut displace = [Slot::Number(0.0); 3];
+        for (dof, value) in &s.displace {
+            let k = c.one_of(dof, &DOF_NAMES, &key("displace"))?;
+            if !fixed[k] {
+                return c.err(
+                    key("displace"),
+                    format!("\"{dof}\" is not held by this support (add it to `fix`)"),
+                );
+            }
+            let slot = c.slot(value, params, &key(&format!("displace.{dof}")))?;
+            if let Slot::Param { index, .. } = slot {
+                if params[index].variability != Variability::Fixed {
+                    return c.err(
+                        key(&format!("displace.{dof}")),
+                        format!(
+                            "parameter `{}` is tunable: a prescribed displacement must not jump \
+                             during a run (make it fixed, or use motion = \"input\")",
+                            params[index].name
+                        ),
+                    );
+                }
+            }
+            displace[k] = slot;
+        }
+        let motion = match s.motion.as_deref() {
+            None | Some("none") => false,
+            Some(m) => c.one_of(m, &["none", "input"], &key("motion"))? == 1,
+        };
+        let index = out.len();
+        if motion {
+            for dof in (0..3).filter(|&k| fixed[k]) {
+                inputs.push(Input {
+                    name: format!("{name}_{}", DOF_NAMES[dof]),
+                    kind: InputKind::Motion {
+                        support: index,
+                        dof,
+                    },
+                    start: displace[dof],
+                    unit: Some(if dof == 2 { "rad" } else { "m" }.to_string()),
+                    description: format!(
+                        "Prescribed {} of support {name}: reached at the end of each communication \
+                         step, linearly from its value at the start",
+                        ["displacement u1", "displacement u2", "rotation w"][dof]
+                    ),
+                });
+            }
+        }
+        out.push(Support {
+            name,
+            at,
+            fixed,
+            displace,
+            motion,
+        });
+    }
+    Ok(out)
+}
+
+fn loads(
+    c: &Checker,
+    raw: &[LoadFile],
+    params: &mut [Param],
+    inputs: &mut Vec<Input>,
+) -> Result<Vec<Load>, SceneError> {
+    let mut out = Vec::new();
+    let mut f_units = BTreeSet::new();
+    for (i, l) in raw.iter().enumerate() {
+        let key = |k: &str| entry("load", i, l.name.as_ref(), k);
+        let name = c.identifier(l.name.as_ref(), &key("name"))?;
+        let kind_name = c.required(
+            l.kind.as_deref(),
+            &key("kind"),
+            "\"point\" or \"distributed\"",
+        )?;
+        let kind = match c.one_of(kind_name, &["point", "distributed"], &key("kind"))? {
+            0 => LoadKind::Point {
+                at: c.station(l.at, &key("at"))?,
+            },
+            _ if l.at.is_some() => {
+                return c.err(
+                    key("at"),
+                    "a distributed load acts on the whole rod: no `at`",
+                )
+            }
+            _ => LoadKind::Distributed,
+        };
+        let unit = if matches!(kind, LoadKind::Point { .. }) {
+            "N"
+        } else {
+            "N/m"
+        };
+        let dir = c.required(
+            l.direction.as_deref(),
+            &key("direction"),
+            "\"e1\", \"e2\", \"-e1\" or \"-e2\"",
+        )?;
+        let d = c.one_of(dir, &["e1", "e2", "-e1", "-e2"], &key("direction"))?;
+        let direction = Direction {
+            component: d % 2,
+            sign: if d < 2 { 1.0 } else { -1.0 },
+        };
+        let time_name = l.time.as_deref().unwrap_or("constant");
+        let time_kind = c.one_of(time_name, &["constant", "harmonic", "input"], &key("time"))?;
+        if time_kind != 2 && l.start.is_some() {
+            return c.err(
+                key("start"),
+                "only an input load (time = \"input\") has a start value",
+            );
+        }
+        let (value, time) = match time_kind {
+            0 => {
+                let v = c.required(
+                    l.value.as_ref(),
+                    &key("value"),
+                    "a number, a parameter name, or -name",
+                )?;
+                (c.slot(v, params, &key("value"))?, TimeLaw::Constant)
+            }
+            1 => {
+                let default = toml::Value::String("F".into());
+                let slot = c.slot(l.value.as_ref().unwrap_or(&default), params, &key("value"))?;
+                if let Slot::Param { index, .. } = slot {
+                    if params[index].name == "F" {
+                        f_units.insert(unit);
+                    }
+                }
+                (slot, TimeLaw::Harmonic)
+            }
+            _ => {
+                if l.value.is_some() {
+                    return c.err(
+                        key("value"),
+                        "the magnitude of an input load is the FMI input itself (give its start value with `start`)",
+                    );
+                }
+                let start = l.start.unwrap_or(0.0);
+                if !start.is_finite() {
+                    return c.err(key("start"), "must be finite");
+                }
+                inputs.push(Input {
+                    name: name.clone(),
+                    kind: InputKind::Load(out.len()),
+                    start: Slot::Number(start),
+                    unit: Some(unit.to_string()),
+                    description: if l.description.trim().is_empty() {
+                        format!(
+                            "{} load along {dir}{}, held over each communication step",
+                            if unit == "N" { "Point" } else { "Distributed" },
+                            match kind {
+                                LoadKind::Point { at } => format!(" at {at} of the length"),
+                                LoadKind::Distributed => String::new(),
+                            }
+                        )
+                    } else {
+                        l.description.trim().to_string()
+                    },
+                });
+                (Slot::Number(1.0), TimeLaw::Input(inputs.len() - 1))
+            }
+        };
+        out.push(Load {
+            name,
+            kind,
+            direction,
+            value,
+            time,
+        });
+    }
+    if f_units.len() == 1 {
+        if let Some(f) = params.iter_mut().find(|p| p.name == "F") {
+            f.unit = f_units.first().map(|u| u.to_string());
+        }
+    }
+    Ok(out)
+}
+
+fn sensor(c: &Checker, i: usize, s: &SensorFile) -> Result<Sensor, SceneError> {
+    let key = |k: &str| entry("sensor", i, s.name.as_ref(), k);
+    let name = c.identifier(s.name.as_ref(), &key("name"))?;
+    let at = c.station(s.at, &key("at"))?;
+    let q = c.required(
+        s.quantity.as_deref(),
+        &key("quantity"),
+        "one of u1, u2, w, v1, v2, vw",
+    )?;
+    let quantity = [
+        Quantity::U1,
+        Quantity::U2,
+        Quantity::W,
+        Quantity::V1,
+        Quantity::V2,
+        Quantity::Vw,
+    ][c.one_of(q, &Quantity::NAMES, &key("quantity"))?];
+    Ok(Sensor {
+        name,
+        at,
+        quantity,
+        description: s.description.trim().to_string(),
+    })
+}
+
+fn initial(
+    c: &Checker,
+    raw: &SceneFile,
+    sensors: &[Sensor],
+    params: &[Param],
+) -> Result<Initial, SceneError> {
+    let Some(i) = raw.initial.as_ref() else {
+        return Ok(Initial {
+            state: InitialState::Static,
+            branch: None,
+        });
+    };
+    let state = match i.state.as_deref() {
+        None => InitialState::Static,
+        Some(s) => [InitialState::Static, InitialState::Reference]
+            [c.one_of(s, &["static", "reference"], "initial.state")?],
+    };
+    let branch = match i.branch.as_deref() {
+        None if i.branch_sensor.is_some() => {
+            return c.err("initial.branch_sensor", "goes with branch = \"well\"")
+        }
+        None => None,
+        Some(b) => {
+            c.one_of(b, &["well"], "initial.branch")?;
+            if state != InitialState::Static {
+                return c.err(
+                    "initial.branch",
+                    "a branch is chosen only for state = \"static\"",
+                );
+            }
+            let name = c.required(
+                i.branch_sensor.as_ref(),
+                "initial.branch_sensor",
+                "the sensor whose sign `well` picks",
+            )?;
+            let Some(sensor) = sensors.iter().position(|s| &s.name == name) else {
+                return c.err(
+                    "initial.branch_sensor",
+                    format!("`{name}` is not a [[sensor]] of this scene"),
+                );
+            };
+            if sensors[sensor].quantity.dof().1 {
+                return c.err(
+                    "initial.branch_sensor",
+                    format!("`{name}` measures a velocity: pick a displacement sensor (u1, u2, w)"),
+                );
+            }
+            let well_param = params
+                .iter()
+                .position(|p| p.name == params::WELL)
+                .expect("declared with a branch");
+            Some(Branch { sensor, well_param })
+        }
+    };
+    Ok(Initial { state, branch })
+}
+
+/// The rigid-body motion the supports leave free, if any: the held dofs must see all three
+/// planar rigid motions (two translations, a rotation about the origin) independently.
+fn free_rigid_motion(scene: &Scene, span: f64, rise: Option<f64>) -> Option<&'static str> {
+    let curve = match rise {
+        Some(h) => crate::model::ReferenceCurve::arc(span, h),
+        None => crate::model::ReferenceCurve::Straight { length: span },
+    };
+    // Rows: what each held dof sees of (translation e1, translation e2, rotation).
+    let mut rows: Vec<[f64; 3]> = Vec::new();
+    for s in &scene.supports {
+        let x = curve.position(s.at * curve.length()) / span;
+        for (k, _) in s.fixed.iter().enumerate().filter(|(_, f)| **f) {
+            rows.push(match k {
+                0 => [1.0, 0.0, -x[1]],
+                1 => [0.0, 1.0, x[0]],
+                _ => [0.0, 0.0, 1.0],
+            });
+        }
+    }
+    let m = nalgebra::DMatrix::from_fn(rows.len(), 3, |i, j| rows[i][j]);
+    let rank = if rows.is_empty() { 0 } else { m.rank(1e-9) };
+    if rank == 3 {
+        return None;
+    }
+    // Name one free motion: a null vector of the rows.
+    let free = |v: [f64; 3]| {
+        rows.iter()
+            .all(|r| (r[0] * v[0] + r[1] * v[1] + r[2] * v[2]).abs() < 1e-9)
+    };
+    Some(if free([1.0, 0.0, 0.0]) {
+        "translate along e1"
+    } else if free([0.0, 1.0, 0.0]) {
+        "translate along e2"
+    } else {
+        "rotate"
+    })
+}

@@ -1,0 +1,108 @@
+//! The scene file as written (TOML), before any check beyond types and key names. Every table
+//! refuses unknown keys; value slots (`value`, `displace`) stay raw TOML values here so that a
+//! wrong type can be reported with the key it sits under.
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub name: Option<String>,
+    #[serde(default)]
+    pub description: String,
+    pub experiment: Option<ExperimentFile>,
+    pub geometry: Option<GeometryFile>,
+    #[serde(default)]
+    pub defaults: BTreeMap<String, toml::Value>,
+    #[serde(default)]
+    pub parameter: Vec<ParameterFile>,
+    #[serde(default)]
+    pub support: Vec<SupportFile>,
+    #[serde(default)]
+    pub load: Vec<LoadFile>,
+    #[serde(default)]
+    pub sensor: Vec<SensorFile>,
+    pub shape: Option<ShapeFile>,
+    pub initial: Option<InitialFile>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct ExperimentFile {
+    pub start: Option<f64>,
+    pub stop: Option<f64>,
+    pub step: Option<f64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct GeometryFile {
+    pub shape: Option<String>,
+    #[serde(rename = "L")]
+    pub span: Option<f64>,
+    #[serde(rename = "H")]
+    pub rise: Option<f64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct ParameterFile {
+    pub name: Option<String>,
+    pub start: Option<f64>,
+    pub unit: Option<String>,
+    pub variability: Option<String>,
+    #[serde(default)]
+    pub description: String,
+    pub min: Option<f64>,
+    pub max: Option<f64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct SupportFile {
+    pub name: Option<String>,
+    pub at: Option<f64>,
+    pub fix: Option<Vec<String>>,
+    #[serde(default)]
+    pub displace: BTreeMap<String, toml::Value>,
+    pub motion: Option<String>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct LoadFile {
+    pub name: Option<String>,
+    pub kind: Option<String>,
+    pub at: Option<f64>,
+    pub direction: Option<String>,
+    pub value: Option<toml::Value>,
+    pub time: Option<String>,
+    /// Start value of an input load (`time = "input"`), default 0.
+    pub start: Option<f64>,
+    #[serde(default)]
+    pub description: String,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct SensorFile {
+    pub name: Option<String>,
+    pub at: Option<f64>,
+    pub quantity: Option<String>,
+    #[serde(default)]
+    pub description: String,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct ShapeFile {
+    pub points: Option<i64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct InitialFile {
+    pub state: Option<String>,
+    pub branch: Option<String>,
+    pub branch_sensor: Option<String>,
+}

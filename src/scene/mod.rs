@@ -1,0 +1,336 @@
+//! A scene is data: one TOML file (format in `docs/scenes.md`) says what the rod is (geometry,
+//! material, mesh), how it is held (supports, fixed or prescribed or moved by an input), what
+//! acts on it (point and distributed loads: constant, harmonic or an FMI input), what is
+//! measured (sensors, shape samples, support reactions) and where it starts (static equilibrium
+//! or the reference state). [`Scene::parse`] checks a file completely, with messages that name
+//! the file, the key and what is allowed; the packager, the core and the FMU all read scenes
+//! through it.
+mod check;
+mod file;
+pub mod params;
+pub mod variables;
+
+pub use params::{Param, ParamError, ParamValues, Range, Std, VarType, Variability};
+
+use std::fmt;
+use std::path::Path;
+
+/// Degrees of freedom of a node, in the order of the global vectors.
+pub const DOF_NAMES: [&str; 3] = ["u1", "u2", "w"];
+
+/// Why a scene file was refused: the file, the key and what is allowed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneError {
+    pub file: String,
+    pub key: String,
+    pub message: String,
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.key.is_empty() {
+            write!(f, "{}: {}", self.file, self.message)
+        } else {
+            write!(f, "{}: {}: {}", self.file, self.key, self.message)
+        }
+    }
+}
+
+impl std::error::Error for SceneError {}
+
+/// The default experiment of the FMU.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DefaultExperiment {
+    pub start: f64,
+    pub stop: f64,
+    pub step: f64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Geometry {
+    /// Along `e1` from `(0, 0)` to `(L, 0)`.
+    Straight,
+    /// Circular arc from `(0, 0)` to `(L, 0)` through the crown `(L/2, H)`.
+    Arc,
+}
+
+/// A number or a (possibly negated) parameter, as written in a value slot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Slot {
+    Number(f64),
+    Param { index: usize, sign: f64 },
+}
+
+impl Slot {
+    pub fn eval(&self, values: &ParamValues) -> f64 {
+        match *self {
+            Slot::Number(x) => x,
+            Slot::Param { index, sign } => sign * values.get(index),
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Support {
+    pub name: String,
+    /// Station: fraction of the arc length.
+    pub at: f64,
+    /// Which of `u1, u2, w` are held.
+    pub fixed: [bool; 3],
+    /// The prescribed value of each held dof (0 unless `displace` says otherwise).
+    pub displace: [Slot; 3],
+    /// The held dofs follow FMI inputs `<name>_<dof>`.
+    pub motion: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LoadKind {
+    Point {
+        at: f64,
+    },
+    /// Per unit length over the whole rod.
+    Distributed,
+}
+
+/// A fixed direction: `component` 0 (`e1`) or 1 (`e2`), `sign` +1 or -1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Direction {
+    pub component: usize,
+    pub sign: f64,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TimeLaw {
+    Constant,
+    /// `value cos(Omega t)`.
+    Harmonic,
+    /// The FMI input of the scene's input list with this index, held over a communication step.
+    Input(usize),
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Load {
+    pub name: String,
+    pub kind: LoadKind,
+    pub direction: Direction,
+    /// Magnitude (for inputs: 1, the input is the magnitude).
+    pub value: Slot,
+    pub time: TimeLaw,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    U1,
+    U2,
+    W,
+    V1,
+    V2,
+    Vw,
+}
+
+impl Quantity {
+    pub const NAMES: [&'static str; 6] = ["u1", "u2", "w", "v1", "v2", "vw"];
+
+    /// The nodal dof it reads and whether it reads velocities.
+    pub fn dof(self) -> (usize, bool) {
+        match self {
+            Quantity::U1 => (0, false),
+            Quantity::U2 => (1, false),
+            Quantity::W => (2, false),
+            Quantity::V1 => (0, true),
+            Quantity::V2 => (1, true),
+            Quantity::Vw => (2, true),
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sensor {
+    pub name: String,
+    pub at: f64,
+    pub quantity: Quantity,
+    pub description: String,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InitialState {
+    /// The static equilibrium under the constant loads and prescribed displacements.
+    Static,
+    /// The undeformed reference state, at rest.
+    Reference,
+}
+
+/// The branch choice of the initial static state: the equilibrium in which `sensor` has the
+/// sign of the parameter `well`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Branch {
+    pub sensor: usize,
+    pub well_param: usize,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Initial {
+    pub state: InitialState,
+    pub branch: Option<Branch>,
+}
+
+/// What an FMI input drives.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InputKind {
+    /// The magnitude of load `i`.
+    Load(usize),
+    /// The prescribed value of dof `dof` of support `support`.
+    Motion { support: usize, dof: usize },
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Input {
+    pub name: String,
+    pub kind: InputKind,
+    pub start: Slot,
+    pub unit: Option<String>,
+    pub description: String,
+}
+
+/// A checked scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub name: String,
+    pub description: String,
+    pub experiment: DefaultExperiment,
+    pub geometry: Geometry,
+    /// Standard parameters first (indices of [`Std`]), then the optional standard ones, then
+    /// the scene's own.
+    pub params: Vec<Param>,
+    pub supports: Vec<Support>,
+    pub loads: Vec<Load>,
+    pub sensors: Vec<Sensor>,
+    pub inputs: Vec<Input>,
+    /// Number of shape samples (0: none).
+    pub shape_points: usize,
+    pub initial: Initial,
+    /// The file's text, exactly as read (what an FMU carries in `resources/`).
+    pub source: String,
+}
+
+impl Scene {
+    /// Checks a scene file's text; `origin` names it in messages.
+    pub fn parse(text: &str, origin: &str) -> Result<Scene, SceneError> {
+        check::check(text, origin)
+    }
+
+    /// Reads and checks a scene file.
+    pub fn load(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        let path = path.as_ref();
+        let origin = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError {
+            file: origin.clone(),
+            key: String::new(),
+            message: format!("cannot read the scene file: {e}"),
+        })?;
+        Scene::parse(&text, &origin)
+    }
+
+    pub fn param_index(&self, name: &str) -> Option<usize> {
+        self.params.iter().position(|p| p.name == name)
+    }
+
+    /// The parameter named `name`, or an error naming the parameters there are.
+    pub fn param(&self, name: &str) -> Result<(usize, &Param), ParamError> {
+        self.param_index(name)
+            .map(|i| (i, &self.params[i]))
+            .ok_or_else(|| {
+                let names: Vec<&str> = self.params.iter().map(|p| p.name.as_str()).collect();
+                params::refuse(
+                    name,
+                    format!(
+                        "not a parameter of the {} scene (it has: {})",
+                        self.name,
+                        names.join(", ")
+                    ),
+                )
+            })
+    }
+
+    /// The start values of every parameter.
+    pub fn defaults(&self) -> ParamValues {
+        ParamValues(self.params.iter().map(|p| p.start).collect())
+    }
+
+    /// The start values with some parameters overridden by name, checked.
+    pub fn values_with<'a>(
+        &self,
+        overrides: impl IntoIterator<Item = (&'a str, f64)>,
+    ) -> Result<ParamValues, ParamError> {
+        let mut values = self.defaults();
+        for (name, value) in overrides {
+            self.set(&mut values, name, value)?;
+        }
+        self.check(&values)?;
+        Ok(values)
+    }
+
+    /// Sets one parameter by name after checking its own range (conditions between parameters
+    /// are checked by [`Scene::check`]). On error nothing changes.
+    pub fn set(&self, values: &mut ParamValues, name: &str, value: f64) -> Result<(), ParamError> {
+        let (index, param) = self.param(name)?;
+        param.check(value)?;
+        values.0[index] = value;
+        Ok(())
+    }
+
+    /// Every range, the conditions between parameters, and that the supports fall on nodes.
+    pub fn check(&self, values: &ParamValues) -> Result<(), ParamError> {
+        for (param, &value) in self.params.iter().zip(&values.0) {
+            param.check(value)?;
+        }
+        if let Some(rise) = self.param_index("H") {
+            let (h, span) = (values.get(rise), values.std(Std::Span));
+            if h > 0.5 * span {
+                return Err(params::refuse(
+                    "H",
+                    format!(
+                        "{h} is out of range: must be in (0, L/2] = (0, {}]",
+                        0.5 * span
+                    ),
+                ));
+            }
+        }
+        self.check_mesh(values.elements())
+    }
+
+    /// Whether every support falls on a node of a mesh of `elements` equal elements; if not,
+    /// the error says which counts work.
+    pub fn check_mesh(&self, elements: usize) -> Result<(), ParamError> {
+        let off = self.supports.iter().find(|s| !on_node(s.at, elements));
+        let Some(support) = off else { return Ok(()) };
+        let works = self.node_counts();
+        let hint = match works {
+            Some(base) => format!(
+                "element counts that put every support on a node: multiples of {base} \
+                 ({base}, {}, {}, ...)",
+                2 * base,
+                3 * base
+            ),
+            None => "no element count up to 100000 puts every support on a node".to_string(),
+        };
+        Err(params::refuse(
+            params::ELEMENTS,
+            format!(
+                "{elements} elements put support `{}` (at {} of the length) between two nodes; {hint}",
+                support.name, support.at
+            ),
+        ))
+    }
+
+    /// The smallest element count that puts every support on a node (all multiples work).
+    pub fn node_counts(&self) -> Option<usize> {
+        (1..=100_000).find(|&n| self.supports.iter().all(|s| on_node(s.at, n)))
+    }
+}
+
+/// Whether station `at` (a fraction of the length) is a node of `elements` equal elements.
+pub fn on_node(at: f64, elements: usize) -> bool {
+    let x = at * elements as f64;
+    (x - x.round()).abs() <= 1e-9 * elements.max(1) as f64
+}

@@ -1,0 +1,579 @@
+//! A scene brought to its initial state and advanced in time by midpoint sub-steps: everything
+//! an FMU instance computes, without any FMI concern.
+//!
+//! - [`setup`]: the scene's rod, held dofs, loads and read points for given parameter values;
+//! - [`initial`]: the initial static state (load stepping, branch choice);
+//! - [`supports`]: moving supports, speed changes as impulses, reactions;
+//! - [`outputs`]: sensors, shape, reactions and energies by output id;
+//! - [`snapshot`]: clock, energy ledger and snapshots for exact restarts.
+pub mod initial;
+pub mod outputs;
+pub mod setup;
+pub mod snapshot;
+pub mod supports;
+
+pub use snapshot::{Clock, EnergyLedger, Snapshot, SNAPSHOT_VERSION};
+
+use crate::integrator::{DynamicState, Midpoint, NewtonFailure, Scheme};
+use crate::scene::{ParamError, ParamValues, Scene, Std, Variability};
+use setup::Setup;
+use std::fmt;
+use std::sync::Arc;
+use supports::MotionSolver;
+
+/// How often a failing sub-step is halved before a communication step is given up.
+pub const MAX_STEP_CUTS: u32 = 5;
+
+/// Most sub-steps one communication step may take (after cuts): beyond this a step is refused
+/// rather than run for hours (`dt_max` far below the communication step).
+pub const MAX_SUBSTEPS: usize = 10_000_000;
+
+/// Why a simulation could not be built or advanced.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SimError {
+    /// A parameter out of range (names the variable and the allowed range).
+    Param(ParamError),
+    /// The initial static equilibrium could not be found.
+    InitialState(String),
+    /// A time step did not converge even after cutting it; the state is unchanged.
+    StepFailed { time: f64, reason: String },
+    /// A snapshot that does not belong to this simulation.
+    BadSnapshot(String),
+    /// A bad argument (non-finite or negative step size, ...).
+    BadArgument(String),
+}
+
+impl fmt::Display for SimError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SimError::Param(e) => e.fmt(f),
+            SimError::InitialState(why) => write!(f, "initial static state not found: {why}"),
+            SimError::StepFailed { time, reason } => {
+                write!(
+                    f,
+                    "step from t = {time} failed: {reason}; state left unchanged"
+                )
+            }
+            SimError::BadSnapshot(why) => write!(f, "state snapshot refused: {why}"),
+            SimError::BadArgument(why) => f.write_str(why),
+        }
+    }
+}
+
+impl std::error::Error for SimError {}
+
+impl From<ParamError> for SimError {
+    fn from(e: ParamError) -> Self {
+        SimError::Param(e)
+    }
+}
+
+/// What one [`Simulation::advance`] did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AdvanceReport {
+    pub substeps: usize,
+    /// Corrections (Newton and chord) summed over the sub-steps.
+    pub newton_iterations: u32,
+    /// Jacobians factored, summed over the sub-steps.
+    pub factorizations: u32,
+    /// How many times the sub-step was halved after a Newton failure.
+    pub cuts: u32,
+    /// Something the host should know (e.g. an aliased excitation); the step succeeded.
+    pub warning: Option<String>,
+}
+
+pub struct Simulation {
+    scene: Arc<Scene>,
+    values: ParamValues,
+    setup: Setup,
+    integrator: Midpoint,
+    initial: DynamicState,
+    state: DynamicState,
+    /// Scratch state of a communication step in progress (the state is replaced on success).
+    trial: DynamicState,
+    clock: Clock,
+    last_newton_iterations: u32,
+    /// The values the simulation was built with, restored by [`Simulation::reset`].
+    initial_values: ParamValues,
+    energy: EnergyLedger,
+    trial_energy: EnergyLedger,
+    /// The inputs to hold over the next communication step.
+    inputs: Vec<f64>,
+    /// The load magnitudes the load set was last built with.
+    magnitudes: Vec<f64>,
+    scratch_magnitudes: Vec<f64>,
+    /// Reactions reported after the last step (per support: Rx, Ry, M).
+    reactions: Vec<[f64; 3]>,
+    static_reactions: Vec<[f64; 3]>,
+    trial_impulses: Vec<[f64; 3]>,
+    /// `(dof, increment)` of the moving held dofs over the current sub-step.
+    prescribed: Vec<(usize, f64)>,
+    /// Start and target of each moving held dof over the current communication step, and its
+    /// speed.
+    motion_path: Vec<(f64, f64)>,
+    motion_speeds: Vec<f64>,
+    motion: Option<MotionSolver>,
+}
+
+impl Simulation {
+    /// Checks the values, meshes the scene and finds its initial state.
+    pub fn new(scene: Arc<Scene>, values: ParamValues) -> Result<Simulation, SimError> {
+        scene.check(&values)?;
+        let mut setup = setup::setup(&scene, &values);
+        let inputs: Vec<f64> = (0..scene.inputs.len())
+            .map(|i| crate::scene::variables::input_start(&scene, i, &values))
+            .collect();
+        let mut magnitudes = vec![0.0; scene.loads.len()];
+        setup::load_magnitudes(&scene, &values, &inputs, &mut magnitudes);
+        setup.loads.set_magnitudes(&magnitudes);
+        setup.loads.frequency = scene.param_index("Omega").map_or(0.0, |i| values.get(i));
+        let initial =
+            DynamicState::at_rest(initial::initial_displacements(&scene, &values, &setup)?);
+        let static_reactions = supports::static_reactions(&setup, &initial.u);
+        let mut integrator = Midpoint::new(&setup.rod);
+        integrator.scheme = if values.std(Std::Integrator) == 2.0 {
+            Scheme::EnergyMomentum
+        } else {
+            Scheme::Midpoint
+        };
+        let energy = EnergyLedger {
+            initial_energy: setup.rod.strain_energy(&initial.u),
+            ..EnergyLedger::default()
+        };
+        let moving = setup.held.iter().filter(|h| h.input.is_some()).count();
+        let motion = (moving > 0).then(|| MotionSolver::new(&setup.rod));
+        let sim = Simulation {
+            integrator,
+            energy,
+            trial_energy: energy,
+            state: initial.clone(),
+            trial: initial.clone(),
+            initial,
+            clock: Clock::start(),
+            last_newton_iterations: 0,
+            initial_values: values.clone(),
+            scratch_magnitudes: magnitudes.clone(),
+            magnitudes,
+            reactions: static_reactions.clone(),
+            trial_impulses: vec![[0.0; 3]; static_reactions.len()],
+            static_reactions,
+            prescribed: Vec::with_capacity(moving),
+            motion_path: vec![(0.0, 0.0); moving],
+            motion_speeds: vec![0.0; moving],
+            motion,
+            inputs,
+            values,
+            setup,
+            scene,
+        };
+        sim.check_finite().map_err(|what| {
+            SimError::InitialState(format!("the initial state has a non-finite {what}"))
+        })?;
+        Ok(sim)
+    }
+
+    pub fn scene(&self) -> &Arc<Scene> {
+        &self.scene
+    }
+
+    pub fn values(&self) -> &ParamValues {
+        &self.values
+    }
+
+    pub fn setup(&self) -> &Setup {
+        &self.setup
+    }
+
+    pub fn rod(&self) -> &crate::model::Rod {
+        &self.setup.rod
+    }
+
+    pub fn state(&self) -> &DynamicState {
+        &self.state
+    }
+
+    /// Time since the start of the simulation.
+    pub fn time(&self) -> f64 {
+        self.clock.now()
+    }
+
+    pub fn inputs(&self) -> &[f64] {
+        &self.inputs
+    }
+
+    /// Sets input `i` (held over the next communication step).
+    pub fn set_input(&mut self, i: usize, value: f64) -> Result<(), SimError> {
+        let Some(input) = self.scene.inputs.get(i) else {
+            return Err(SimError::BadArgument(format!("no input {i}")));
+        };
+        if !value.is_finite() {
+            return Err(SimError::BadArgument(format!(
+                "input `{}` = {value} is not finite",
+                input.name
+            )));
+        }
+        self.inputs[i] = value;
+        Ok(())
+    }
+
+    /// Changes a tunable parameter (a fixed one only to its current value).
+    pub fn set_param(&mut self, index: usize, value: f64) -> Result<(), ParamError> {
+        let param = &self.scene.params[index];
+        param.check(value)?;
+        if param.variability == Variability::Fixed && value != self.values.get(index) {
+            return Err(crate::scene::params::refuse(
+                &param.name,
+                "is fixed: it cannot change once the simulation is built",
+            ));
+        }
+        self.values.0[index] = value;
+        if param.name == "Omega" {
+            self.setup.loads.frequency = value;
+        }
+        Ok(())
+    }
+
+    /// The fewest equal sub-steps no longer than `dt_max` that make up `h`.
+    pub fn substeps_for(&self, h: f64) -> usize {
+        // The factor forgives round-off in h / dt_max (1e-4 / 1e-5 is 10.000000000000002).
+        // (`as usize` saturates: an absurd ratio becomes usize::MAX, refused by `advance`.)
+        ((h / self.values.dt_max()) * (1.0 - 1e-12)).ceil().max(1.0) as usize
+    }
+
+    /// Rebuilds the load set if a load's magnitude changed (inputs, tunable parameters).
+    fn refresh_loads(&mut self) {
+        setup::load_magnitudes(
+            &self.scene,
+            &self.values,
+            &self.inputs,
+            &mut self.scratch_magnitudes,
+        );
+        if self.scratch_magnitudes != self.magnitudes {
+            self.magnitudes.copy_from_slice(&self.scratch_magnitudes);
+            self.setup.loads.set_magnitudes(&self.magnitudes);
+        }
+    }
+
+    /// One communication step of length `h` with the inputs held (loads) or followed linearly
+    /// (support motions): equal midpoint sub-steps no longer than `dt_max`, the excitation taken
+    /// at each sub-step's midpoint. A failing sub-step makes the whole step restart with half
+    /// the sub-step size (at most [`MAX_STEP_CUTS`] times); if it still fails, the state is left
+    /// exactly as it was.
+    pub fn advance(&mut self, h: f64) -> Result<AdvanceReport, SimError> {
+        if !(h.is_finite() && h > 0.0) {
+            return Err(SimError::BadArgument(format!(
+                "step size {h} must be finite and > 0"
+            )));
+        }
+        self.refresh_loads();
+        let t0 = self.time();
+        let mut substeps = self.substeps_for(h);
+        if substeps > MAX_SUBSTEPS {
+            return Err(SimError::BadArgument(format!(
+                "a step of {h:e} s with dt_max = {:e} s needs {substeps} sub-steps, more than \
+                 {MAX_SUBSTEPS}: raise dt_max or shorten the communication step",
+                self.values.dt_max()
+            )));
+        }
+        let mut last_failure = None;
+        for cuts in 0..=MAX_STEP_CUTS {
+            match self.try_substeps(h, substeps) {
+                Ok((newton_iterations, factorizations)) => {
+                    std::mem::swap(&mut self.state, &mut self.trial);
+                    self.energy = self.trial_energy;
+                    self.clock = self.clock.with_step(h / substeps as f64);
+                    self.clock.count += substeps as u64;
+                    self.last_newton_iterations = newton_iterations;
+                    for (r, j) in self.reactions.iter_mut().zip(&self.trial_impulses) {
+                        *r = j.map(|x| x / h);
+                    }
+                    return Ok(AdvanceReport {
+                        substeps,
+                        newton_iterations,
+                        factorizations,
+                        cuts,
+                        warning: self.aliasing_warning(h / substeps as f64),
+                    });
+                }
+                Err(why) => last_failure = Some(why),
+            }
+            substeps = substeps.saturating_mul(2);
+            if substeps > MAX_SUBSTEPS {
+                break;
+            }
+        }
+        Err(SimError::StepFailed {
+            time: t0,
+            reason: format!(
+                "{} (after {MAX_STEP_CUTS} halvings of the sub-step)",
+                last_failure.unwrap_or_default()
+            ),
+        })
+    }
+
+    /// Sub-steps of `h / substeps` on the trial state. Returns the corrections and the
+    /// factorizations summed over the sub-steps, or why it failed.
+    fn try_substeps(&mut self, h: f64, substeps: usize) -> Result<(u32, u32), String> {
+        self.trial.copy_from(&self.state);
+        self.trial_energy = self.energy;
+        self.trial_impulses.iter_mut().for_each(|j| *j = [0.0; 3]);
+        self.start_motion(h);
+        let dt = h / substeps as f64;
+        let clock = self.clock.with_step(dt);
+        let (mut iterations, mut factorizations) = (0, 0);
+        for k in 0..substeps {
+            let t_k = clock.at(k as u64);
+            self.motion_increments(k, substeps);
+            let s = &self.setup;
+            let stats = self
+                .integrator
+                .step(&s.rod, &s.loads, &mut self.trial, t_k, dt, &self.prescribed)
+                .map_err(|e: NewtonFailure| e.to_string())?;
+            iterations += stats.iterations;
+            factorizations += stats.factorizations;
+            self.book(t_k + 0.5 * dt, dt);
+        }
+        self.check_trial()
+            .map_err(|what| format!("a non-finite {what} after the step"))?;
+        Ok((iterations, factorizations))
+    }
+
+    /// Sets up the moving supports' paths over a step of `h` and their speed change.
+    fn start_motion(&mut self, h: f64) {
+        let Some(motion) = self.motion.as_mut() else {
+            return;
+        };
+        let moving = self
+            .setup
+            .held
+            .iter()
+            .filter_map(|h| h.input.map(|i| (h.dof, i)));
+        let paths = self
+            .motion_path
+            .iter_mut()
+            .zip(self.motion_speeds.iter_mut());
+        for ((dof, input), (path, speed)) in moving.zip(paths) {
+            *path = (self.trial.u[dof], self.inputs[input]);
+            *speed = (path.1 - path.0) / h;
+        }
+        motion.change_speeds(
+            &self.setup.rod,
+            &self.setup.held,
+            &self.motion_speeds,
+            &mut self.trial,
+            &mut self.trial_impulses,
+            &mut self.trial_energy,
+        );
+    }
+
+    /// The increments of the moving held dofs over sub-step `k` of `n`.
+    fn motion_increments(&mut self, k: usize, n: usize) {
+        self.prescribed.clear();
+        let moving = self.setup.held.iter().filter(|h| h.input.is_some());
+        for (h, &(a, b)) in moving.zip(&self.motion_path) {
+            let at = |j: usize| {
+                if j == n {
+                    b
+                } else {
+                    a + (b - a) * (j as f64 / n as f64)
+                }
+            };
+            self.prescribed.push((h.dof, at(k + 1) - at(k)));
+        }
+    }
+
+    /// Books the work, dissipation and reactions of the sub-step just taken.
+    fn book(&mut self, t_mid: f64, dt: f64) {
+        let du = self.integrator.last_increment();
+        let (external, input) = self.setup.loads.work(du, t_mid);
+        let ledger = &mut self.trial_energy;
+        ledger.external_work += external;
+        ledger.input_work += input;
+        ledger.dissipated += self.setup.rod.dissipation_rate(du) / dt;
+        supports::book_reactions(
+            &self.setup,
+            &self.integrator,
+            &self.trial,
+            t_mid,
+            dt,
+            &mut self.trial_impulses,
+            &mut self.trial_energy,
+        );
+    }
+
+    /// A converged step can still reach non-finite numbers (overflow on absurd parameters).
+    fn check_trial(&self) -> Result<(), &'static str> {
+        if !self
+            .trial
+            .u
+            .iter()
+            .chain(&self.trial.v)
+            .all(|x| x.is_finite())
+        {
+            return Err("displacement or velocity");
+        }
+        if !self.trial_energy.is_finite() {
+            return Err("energy");
+        }
+        if !self.trial_impulses.iter().flatten().all(|x| x.is_finite()) {
+            return Err("reaction");
+        }
+        Ok(())
+    }
+
+    fn check_finite(&self) -> Result<(), &'static str> {
+        if !self
+            .state
+            .u
+            .iter()
+            .chain(&self.state.v)
+            .all(|x| x.is_finite())
+        {
+            return Err("displacement");
+        }
+        if !self.energy.is_finite() {
+            return Err("strain energy");
+        }
+        if !self.reactions.iter().flatten().all(|x| x.is_finite()) {
+            return Err("reaction");
+        }
+        Ok(())
+    }
+
+    /// Sub-steps of half a forcing period or more sample the excitation at its midpoints only:
+    /// the step converges but cannot represent the load.
+    pub fn aliasing_warning(&self, dt: f64) -> Option<String> {
+        let omega = self.setup.loads.frequency;
+        (omega * dt >= std::f64::consts::PI && self.setup.loads.has_harmonic()).then(|| {
+            format!(
+                "sub-step {dt:e} s is at least half the forcing period (Omega dt = {:.3} >= pi): \
+                 the excitation is aliased; lower dt_max",
+                omega * dt
+            )
+        })
+    }
+
+    /// Newton iterations summed over the sub-steps of the last communication step.
+    pub fn last_newton_iterations(&self) -> u32 {
+        self.last_newton_iterations
+    }
+
+    pub fn energy(&self) -> &EnergyLedger {
+        &self.energy
+    }
+
+    /// The reactions per support (Rx, Ry, M): averaged over the last communication step, or
+    /// the static ones before the first.
+    pub fn reactions(&self) -> &[[f64; 3]] {
+        &self.reactions
+    }
+
+    pub fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            version: SNAPSHOT_VERSION,
+            scene: self.scene.name.clone(),
+            elements: self.values.elements(),
+            time: self.time(),
+            displacements: self.state.u.clone(),
+            velocities: self.state.v.clone(),
+            values: self.values.0.clone(),
+            inputs: self.inputs.clone(),
+            reactions: self.reactions.clone(),
+            last_newton_iterations: self.last_newton_iterations,
+            energy: self.energy,
+            clock: self.clock,
+        }
+    }
+
+    /// Continues from a snapshot of a simulation of the same scene and fixed parameters.
+    pub fn restore(&mut self, s: &Snapshot) -> Result<(), SimError> {
+        let bad = |why: String| Err(SimError::BadSnapshot(why));
+        if s.version != SNAPSHOT_VERSION {
+            return bad(format!(
+                "version {} (this build reads {SNAPSHOT_VERSION})",
+                s.version
+            ));
+        }
+        if s.scene != self.scene.name {
+            return bad(format!(
+                "taken from a {} (this is a {})",
+                s.scene, self.scene.name
+            ));
+        }
+        if s.elements != self.values.elements() {
+            return bad(format!(
+                "{} elements (this rod has {})",
+                s.elements,
+                self.values.elements()
+            ));
+        }
+        let n = self.setup.rod.dofs();
+        if s.displacements.len() != n
+            || s.velocities.len() != n
+            || s.values.len() != self.values.0.len()
+            || s.inputs.len() != self.inputs.len()
+            || s.reactions.len() != self.reactions.len()
+        {
+            return bad("vectors of the wrong length".to_string());
+        }
+        let numbers = s
+            .displacements
+            .iter()
+            .chain(&s.velocities)
+            .chain(&s.values)
+            .chain(&s.inputs);
+        if !(s.time.is_finite()
+            && numbers
+                .chain(s.reactions.iter().flatten())
+                .all(|x| x.is_finite())
+            && s.energy.is_finite()
+            && s.clock.is_finite())
+        {
+            return bad("non-finite values".to_string());
+        }
+        let mut values = self.values.clone();
+        for (i, &x) in s.values.iter().enumerate() {
+            let p = &self.scene.params[i];
+            if p.variability == Variability::Fixed && x != self.values.get(i) {
+                return bad(format!(
+                    "the fixed parameter `{}` differs ({x}, here {})",
+                    p.name,
+                    self.values.get(i)
+                ));
+            }
+            p.check(x).map_err(SimError::Param)?;
+            values.0[i] = x;
+        }
+        for i in 0..values.0.len() {
+            self.set_param(i, values.get(i))?;
+        }
+        self.state.u.copy_from_slice(&s.displacements);
+        self.state.v.copy_from_slice(&s.velocities);
+        self.inputs.copy_from_slice(&s.inputs);
+        self.reactions.copy_from_slice(&s.reactions);
+        self.clock = s.clock;
+        self.last_newton_iterations = s.last_newton_iterations;
+        self.energy = s.energy;
+        Ok(())
+    }
+
+    /// Back to the initial state at `t = 0`, with the values and inputs it was built with.
+    pub fn reset(&mut self) {
+        let values = self.initial_values.clone();
+        for i in 0..values.0.len() {
+            self.set_param(i, values.get(i))
+                .expect("the initial values were valid");
+        }
+        self.state.copy_from(&self.initial);
+        self.inputs = (0..self.scene.inputs.len())
+            .map(|i| crate::scene::variables::input_start(&self.scene, i, &self.values))
+            .collect();
+        self.energy = EnergyLedger {
+            initial_energy: self.setup.rod.strain_energy(&self.initial.u),
+            ..EnergyLedger::default()
+        };
+        self.reactions.clone_from(&self.static_reactions);
+        self.clock = Clock::start();
+        self.last_newton_iterations = 0;
+    }
+}

@@ -1,0 +1,80 @@
+//! What a simulation reports, by output id: sensors and shape samples read from the state with
+//! the shape functions, support reactions, energies and the energy ledger.
+use super::Simulation;
+use crate::scene::variables::{OutputId, StandardOutput};
+
+impl Simulation {
+    /// The value of an output at the current time.
+    pub fn output(&self, id: OutputId) -> f64 {
+        let rod = self.rod();
+        let state = self.state();
+        match id {
+            OutputId::Standard(s) => self.standard_output(s),
+            OutputId::Sensor(i) => {
+                let (dof, velocity) = self.scene().sensors[i].quantity.dof();
+                let x = if velocity { &state.v } else { &state.u };
+                rod.interpolate(x, self.setup().sensors[i].point, dof)
+            }
+            OutputId::Reaction { support, component } => self.reactions()[support][component],
+            OutputId::ShapeX(i) => self.shape_point(i)[0],
+            OutputId::ShapeY(i) => self.shape_point(i)[1],
+        }
+    }
+
+    /// Current position of shape sample `i`: the reference curve plus the interpolated
+    /// displacement.
+    pub fn shape_point(&self, i: usize) -> [f64; 2] {
+        let probe = self.setup().shape[i];
+        let rod = self.rod();
+        let x = rod.curve.position(probe.s);
+        let u = &self.state().u;
+        [
+            x[0] + rod.interpolate(u, probe.point, 0),
+            x[1] + rod.interpolate(u, probe.point, 1),
+        ]
+    }
+
+    pub fn kinetic_energy(&self) -> f64 {
+        self.rod().kinetic_energy(&self.state().v)
+    }
+
+    pub fn strain_energy(&self) -> f64 {
+        self.rod().strain_energy(&self.state().u)
+    }
+
+    /// `E_kin + E_strain - E(0) - W_ext - W_ctrl - W_supports + E_damped`.
+    pub fn energy_error(&self) -> f64 {
+        let e = self.energy();
+        self.kinetic_energy() + self.strain_energy()
+            - e.initial_energy
+            - e.external_work
+            - e.input_work
+            - e.support_work
+            + e.dissipated
+    }
+
+    fn standard_output(&self, s: StandardOutput) -> f64 {
+        let e = self.energy();
+        match s {
+            StandardOutput::KineticEnergy => self.kinetic_energy(),
+            StandardOutput::StrainEnergy => self.strain_energy(),
+            StandardOutput::NewtonIterations => f64::from(self.last_newton_iterations()),
+            StandardOutput::ExternalWork => e.external_work,
+            StandardOutput::InputWork => e.input_work,
+            StandardOutput::SupportWork => e.support_work,
+            StandardOutput::Dissipated => e.dissipated,
+            StandardOutput::EnergyError => self.energy_error(),
+        }
+    }
+
+    /// The output named like an FMU variable (sensors, reactions, `shape_x[i]`, energies).
+    pub fn output_by_name(&self, name: &str) -> Option<f64> {
+        crate::scene::variables::variables(self.scene())
+            .into_iter()
+            .find(|v| v.name == name)
+            .and_then(|v| match v.role {
+                crate::scene::variables::Role::Output(id) => Some(self.output(id)),
+                _ => None,
+            })
+    }
+}

@@ -1,0 +1,147 @@
+//! From a scene and its parameter values to the model: the meshed rod with its held degrees of
+//! freedom, the loads, and the points where sensors and shape samples read the state.
+use crate::model::loads::{LoadShape, LoadTime};
+use crate::model::{LoadSet, PointOnRod, ReferenceCurve, Rod, Section};
+use crate::scene::{Geometry, LoadKind, ParamValues, Scene, Slot, Std, TimeLaw};
+
+/// A held (constrained) degree of freedom.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Held {
+    /// Global dof index.
+    pub dof: usize,
+    pub support: usize,
+    /// 0 `u1`, 1 `u2`, 2 `w`.
+    pub component: usize,
+    /// Its prescribed value in the initial state.
+    pub value: Slot,
+    /// The FMI input that moves it, if any.
+    pub input: Option<usize>,
+}
+
+/// A point of the rod where something is read.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Probe {
+    pub point: PointOnRod,
+    /// Arc length.
+    pub s: f64,
+}
+
+pub struct Setup {
+    pub rod: Rod,
+    pub loads: LoadSet,
+    /// The node of each support.
+    pub support_nodes: Vec<usize>,
+    pub held: Vec<Held>,
+    pub sensors: Vec<Probe>,
+    pub shape: Vec<Probe>,
+}
+
+/// The reference curve of a scene with these values.
+pub fn curve(scene: &Scene, values: &ParamValues) -> ReferenceCurve {
+    let span = values.std(Std::Span);
+    match scene.geometry {
+        Geometry::Straight => ReferenceCurve::Straight { length: span },
+        Geometry::Arc => {
+            let rise = values.get(scene.param_index("H").expect("an arc has H"));
+            ReferenceCurve::arc(span, rise)
+        }
+    }
+}
+
+/// Meshes the scene. The values must have passed [`Scene::check`] (supports on nodes).
+pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
+    let section = Section::rectangular(
+        values.std(Std::E),
+        values.std(Std::Nu),
+        values.std(Std::Rho),
+        values.std(Std::Width),
+        values.std(Std::Height),
+    );
+    let n = values.elements();
+    let mut rod = Rod::new(curve(scene, values), section, values.std(Std::Damping), n);
+    let length = rod.curve.length();
+    let mut support_nodes = Vec::new();
+    let mut held = Vec::new();
+    for (k, s) in scene.supports.iter().enumerate() {
+        let node = (s.at * n as f64).round() as usize;
+        support_nodes.push(node);
+        for c in (0..3).filter(|&c| s.fixed[c]) {
+            let input = scene
+                .inputs
+                .iter()
+                .position(|i| i.kind == crate::scene::InputKind::Motion { support: k, dof: c });
+            held.push(Held {
+                dof: 3 * node + c,
+                support: k,
+                component: c,
+                value: s.displace[c],
+                input,
+            });
+        }
+    }
+    for h in &held {
+        rod.fix(h.dof / 3, h.component);
+    }
+
+    // Harmonic loads with the same amplitude slot share one nodal vector.
+    let mut groups: Vec<Slot> = Vec::new();
+    let shapes: Vec<(LoadShape, LoadTime)> = scene
+        .loads
+        .iter()
+        .map(|l| {
+            let (component, sign) = (l.direction.component, l.direction.sign);
+            let shape = match l.kind {
+                LoadKind::Point { at } => LoadShape::Point {
+                    s: at * length,
+                    component,
+                    sign,
+                },
+                LoadKind::Distributed => LoadShape::Distributed { component, sign },
+            };
+            let time = match l.time {
+                TimeLaw::Constant => LoadTime::Constant,
+                TimeLaw::Input(_) => LoadTime::Input,
+                TimeLaw::Harmonic => {
+                    let group = groups
+                        .iter()
+                        .position(|g| *g == l.value)
+                        .unwrap_or_else(|| {
+                            groups.push(l.value);
+                            groups.len() - 1
+                        });
+                    LoadTime::Harmonic { group }
+                }
+            };
+            (shape, time)
+        })
+        .collect();
+    let loads = LoadSet::new(&rod, &shapes);
+    let probe = |at: f64| Probe {
+        point: rod.point_at(at * length),
+        s: at * length,
+    };
+
+    let sensors = scene.sensors.iter().map(|s| probe(s.at)).collect();
+    let points = scene.shape_points;
+    let shape = (0..points)
+        .map(|j| probe(j as f64 / (points - 1).max(1) as f64))
+        .collect();
+    Setup {
+        rod,
+        loads,
+        support_nodes,
+        held,
+        sensors,
+        shape,
+    }
+}
+
+/// The magnitude of every load: its value slot, or for input loads the input's value.
+pub fn load_magnitudes(scene: &Scene, values: &ParamValues, inputs: &[f64], out: &mut [f64]) {
+    for (m, l) in out.iter_mut().zip(&scene.loads) {
+        *m = match l.time {
+            TimeLaw::Input(i) => inputs[i],
+            TimeLaw::Constant | TimeLaw::Harmonic => l.value.eval(values),
+        };
+    }
+}

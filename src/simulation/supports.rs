@@ -1,0 +1,123 @@
+//! What the supports do during a communication step: moving supports follow their inputs
+//! (linearly over the step), a change of their speed is an impulse on the rod, and every held
+//! dof's reaction is accumulated as an impulse so that the step reports its average.
+//!
+//! A support's speed jumps at a communication point when its input path changes slope. With the
+//! consistent mass, the free dofs next to it must then change speed too, so that the impulse
+//! acts on the held dofs only: `M_ff dv_f = -M_fc dv_c`. The impulse `J = (M dv)_c` is part of
+//! the step's reaction (`J / h` of the average), and its work `J . (v_c- + v_c+) / 2` is part
+//! of the supports' work (it is exactly the kinetic energy it adds).
+use super::setup::{Held, Setup};
+use super::snapshot::EnergyLedger;
+use crate::integrator::{DynamicState, Midpoint};
+use crate::model::Rod;
+use crate::solver::BlockTridiagonal;
+
+/// The mass matrix with the held dofs removed, factored, and scratch vectors (made once).
+pub struct MotionSolver {
+    mass: BlockTridiagonal,
+    dv: Vec<f64>,
+    impulse: Vec<f64>,
+}
+
+impl MotionSolver {
+    pub fn new(rod: &Rod) -> MotionSolver {
+        let mut mass = BlockTridiagonal::new(rod.nodes());
+        rod.add_mass(&mut mass, 1.0);
+        mass.constrain(&rod.fixed);
+        mass.factor()
+            .expect("the consistent mass matrix is positive definite");
+        MotionSolver {
+            mass,
+            dv: vec![0.0; rod.dofs()],
+            impulse: vec![0.0; rod.dofs()],
+        }
+    }
+
+    /// Sets the held dofs' velocities to `speeds` (one per entry of `held` with an input;
+    /// others stay at rest), with the impulse that does it. Books the impulse per support in
+    /// `impulses` and its work in `ledger`.
+    pub fn change_speeds(
+        &mut self,
+        rod: &Rod,
+        held: &[Held],
+        speeds: &[f64],
+        state: &mut DynamicState,
+        impulses: &mut [[f64; 3]],
+        ledger: &mut EnergyLedger,
+    ) {
+        self.dv.fill(0.0);
+        let mut any = false;
+        for (h, &speed) in held.iter().filter(|h| h.input.is_some()).zip(speeds) {
+            self.dv[h.dof] = speed - state.v[h.dof];
+            any |= self.dv[h.dof] != 0.0;
+        }
+        if !any {
+            return;
+        }
+        self.impulse.fill(0.0);
+        rod.add_mass_times(&self.dv, &mut self.impulse, -1.0);
+        rod.zero_constrained(&mut self.impulse);
+        self.mass.solve_in_place(&mut self.impulse);
+        // `impulse` now holds dv_f (zero on the held dofs); add the held part back.
+        for (d, f) in self.dv.iter_mut().zip(&self.impulse) {
+            *d += f;
+        }
+        self.impulse.fill(0.0);
+        rod.add_mass_times(&self.dv, &mut self.impulse, 1.0);
+        for h in held {
+            let j = self.impulse[h.dof];
+            let v_before = state.v[h.dof];
+            let v_after = v_before + self.dv[h.dof];
+            impulses[h.support][h.component] += j;
+            ledger.support_work += 0.5 * j * (v_before + v_after);
+        }
+        for (v, d) in state.v.iter_mut().zip(&self.dv) {
+            *v += d;
+        }
+    }
+}
+
+/// Adds the reaction impulses of the sub-step just taken (`dt` times the residual rows of the
+/// held dofs) and the supports' work over it.
+#[allow(clippy::too_many_arguments)]
+pub fn book_reactions(
+    setup: &Setup,
+    integrator: &Midpoint,
+    state: &DynamicState,
+    t_mid: f64,
+    dt: f64,
+    impulses: &mut [[f64; 3]],
+    ledger: &mut EnergyLedger,
+) {
+    let du = integrator.last_increment();
+    for (k, &node) in setup.support_nodes.iter().enumerate() {
+        let rows = integrator.node_residual(&setup.rod, &setup.loads, state, t_mid, dt, node);
+        for (c, r) in rows.iter().enumerate() {
+            if setup.rod.fixed[3 * node + c] {
+                impulses[k][c] += dt * r;
+                ledger.support_work += r * du[3 * node + c];
+            }
+        }
+    }
+}
+
+/// The static reactions of an equilibrium `u` under the constant loads: `f_int - f_const` on
+/// the held dofs (they balance the loads exactly up to round-off).
+pub fn static_reactions(setup: &Setup, u: &[f64]) -> Vec<[f64; 3]> {
+    let rod = &setup.rod;
+    setup
+        .support_nodes
+        .iter()
+        .map(|&node| {
+            let f = rod.node_internal_force(u, node);
+            let mut r = [0.0; 3];
+            for c in 0..3 {
+                if rod.fixed[3 * node + c] {
+                    r[c] = f[c] - setup.loads.constant_at(3 * node + c);
+                }
+            }
+            r
+        })
+        .collect()
+}
