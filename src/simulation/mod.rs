@@ -333,6 +333,11 @@ impl Simulation {
             factorizations += stats.factorizations;
             self.book(t_k + 0.5 * dt, dt);
         }
+        // Moving supports end the step exactly at their targets (not a sum of increments).
+        let moving = self.setup.held.iter().filter(|h| h.input.is_some());
+        for (h, &(_, target)) in moving.zip(&self.motion_path) {
+            self.trial.u[h.dof] = target;
+        }
         self.check_trial()
             .map_err(|what| format!("a non-finite {what} after the step"))?;
         Ok((iterations, factorizations))

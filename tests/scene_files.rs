@@ -1,0 +1,284 @@
+//! Scene files: the repository's scenes and examples parse and package; bad files are refused by
+//! `Scene::parse` and by `georod fmu` with a message that names the file, the key and what is
+//! allowed, and the packager then writes nothing.
+use georod::scene::Scene;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A small valid scene: a pinned-pinned beam with a harmonic load, an input and a sensor.
+const GOOD: &str = r#"
+name = "Good"
+[geometry]
+shape = "straight"
+L = 10.0
+[defaults]
+elements = 10
+[[support]]
+name = "left"
+at = 0.0
+fix = ["u1", "u2"]
+[[support]]
+name = "right"
+at = 1.0
+fix = ["u1", "u2"]
+[[load]]
+name = "q"
+kind = "distributed"
+direction = "-e2"
+time = "harmonic"
+[[load]]
+name = "f_ctrl"
+kind = "point"
+at = 0.5
+direction = "-e2"
+time = "input"
+[[sensor]]
+name = "w_mid"
+at = 0.5
+quantity = "u2"
+"#;
+
+/// Bad files: (what, text, parts the message must contain).
+fn bad_files() -> Vec<(&'static str, String, Vec<&'static str>)> {
+    let edit = |from: &str, to: &str| {
+        assert!(GOOD.contains(from), "{from}");
+        GOOD.replacen(from, to, 1)
+    };
+    vec![
+        ("an empty file", String::new(), vec!["empty"]),
+        (
+            "an unknown key",
+            edit("L = 10.0", "L = 10.0\nwidth = 1.0"),
+            vec!["unknown field `width`", "line"],
+        ),
+        (
+            "a wrong type",
+            edit("L = 10.0", "L = \"ten\""),
+            vec!["invalid type", "line"],
+        ),
+        (
+            "a station outside [0, 1]",
+            edit("at = 1.0", "at = 1.5"),
+            vec!["[[support]] #2 \"right\", key `at`", "[0, 1]"],
+        ),
+        (
+            "a support off the nodes of the default mesh",
+            edit("at = 1.0", "at = 0.35"),
+            vec!["defaults.elements", "support `right`", "multiples of 20"],
+        ),
+        (
+            "an undeclared parameter in a value slot",
+            edit("time = \"harmonic\"", "time = \"constant\"\nvalue = \"-Q\""),
+            vec![
+                "[[load]] #1 \"q\", key `value`",
+                "`Q` is not a declared parameter",
+            ],
+        ),
+        (
+            "a name used twice",
+            edit("name = \"w_mid\"", "name = \"f_ctrl\""),
+            vec!["`f_ctrl` is used twice"],
+        ),
+        (
+            "a rod free to rotate",
+            edit(
+                "fix = [\"u1\", \"u2\"]\n[[load]]",
+                "fix = [\"u1\"]\n[[load]]",
+            ),
+            vec!["free to", "no static equilibrium", "reference"],
+        ),
+        (
+            "a dof name that does not exist",
+            edit("fix = [\"u1\", \"u2\"]", "fix = [\"u1\", \"v\"]"),
+            vec!["key `fix`", "\"u1\", \"u2\", \"w\""],
+        ),
+        (
+            "a direction that does not exist",
+            edit("direction = \"-e2\"", "direction = \"down\""),
+            vec!["key `direction`", "\"e1\", \"e2\", \"-e1\", \"-e2\""],
+        ),
+        (
+            "a tunable parameter as a prescribed displacement",
+            edit(
+                "name = \"right\"\nat = 1.0\nfix = [\"u1\", \"u2\"]",
+                "name = \"right\"\nat = 1.0\nfix = [\"u1\", \"u2\"]\ndisplace = { u1 = \"-s\" }",
+            )
+            .replacen(
+                "[[support]]",
+                "[[parameter]]\nname = \"s\"\nstart = 0.1\nvariability = \"tunable\"\n[[support]]",
+                1,
+            ),
+            vec!["displace.u1", "tunable"],
+        ),
+        (
+            "a standard parameter declared again",
+            GOOD.replacen(
+                "[[support]]",
+                "[[parameter]]\nname = \"E\"\nstart = 1.0\n[[support]]",
+                1,
+            ),
+            vec!["[[parameter]] #1 \"E\", key `name`", "already a parameter"],
+        ),
+        (
+            "a rise on a straight rod",
+            edit("L = 10.0", "L = 10.0\nH = 1.0"),
+            vec!["geometry.H", "straight"],
+        ),
+        (
+            "a name that is not an identifier",
+            edit("name = \"Good\"", "name = \"my rod\""),
+            vec!["name: ", "C identifier"],
+        ),
+    ]
+}
+
+#[test]
+fn good_scene_and_repository_scenes_parse() {
+    Scene::parse(GOOD, "good.toml").expect("the base of the bad files is good");
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for dir in ["scenes", "examples"] {
+        for entry in std::fs::read_dir(repo.join(dir)).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "toml") {
+                let scene = Scene::load(&path).unwrap_or_else(|e| panic!("{e}"));
+                let stem = path.file_stem().unwrap().to_str().unwrap();
+                assert_eq!(
+                    scene.name,
+                    stem,
+                    "{}: name and file name differ",
+                    path.display()
+                );
+                georod::packaging::check_initial_state(&scene).unwrap();
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_scene_files_are_refused_with_the_file_and_the_key() {
+    for (what, text, parts) in bad_files() {
+        let e = Scene::parse(&text, "bad.toml")
+            .err()
+            .unwrap_or_else(|| panic!("{what}: accepted"));
+        let message = e.to_string();
+        println!("{what}:\n    {message}");
+        assert!(message.starts_with("bad.toml: "), "{what}: {message}");
+        for part in parts {
+            assert!(message.contains(part), "{what}: `{message}` lacks `{part}`");
+        }
+    }
+}
+
+fn georod() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_georod"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("georod-scene-files-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The library `georod fmu` ships: the cdylib of this build.
+fn library() -> PathBuf {
+    let exe = PathBuf::from(env!("CARGO_BIN_EXE_georod"));
+    exe.with_file_name(format!("libgeorod{}", std::env::consts::DLL_SUFFIX))
+}
+
+#[test]
+fn the_packager_refuses_bad_files_and_writes_nothing() {
+    let lib = library();
+    if !lib.is_file() {
+        // `cargo test` builds the bin and the cdylib of the same profile together.
+        panic!(
+            "{} is missing: build with `cargo build --release --lib`",
+            lib.display()
+        );
+    }
+    let dir = scratch("bad");
+    let mut cases = bad_files();
+    // A file whose static equilibrium cannot be found: the pinned arch preloaded far beyond its
+    // limit load (about 200 at the crown).
+    let arch = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/PinnedArch.toml"),
+    )
+    .unwrap()
+    .replace(
+        "name = \"P0\"\nstart = 0.0",
+        "name = \"P0\"\nstart = 2000.0",
+    );
+    cases.push((
+        "no static equilibrium",
+        arch,
+        vec!["initial static state not found"],
+    ));
+    for (what, text, parts) in cases {
+        let file = dir.join("bad.toml");
+        std::fs::write(&file, &text).unwrap();
+        let out = dir.join("Bad.fmu");
+        let run = georod()
+            .args([
+                "fmu",
+                file.to_str().unwrap(),
+                "-o",
+                out.to_str().unwrap(),
+                "--lib",
+            ])
+            .arg(&lib)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert!(!run.status.success(), "{what}: packaged");
+        assert!(stderr.contains(file.to_str().unwrap()), "{what}: {stderr}");
+        for part in parts {
+            assert!(stderr.contains(part), "{what}: `{stderr}` lacks `{part}`");
+        }
+        let left: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(
+            left,
+            vec![std::ffi::OsString::from("bad.toml")],
+            "{what}: files left"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn the_packager_writes_an_fmu_with_the_scene_inside() {
+    let dir = scratch("good");
+    let file = dir.join("good.toml");
+    std::fs::write(&file, GOOD).unwrap();
+    let out = dir.join("sub").join("Good.fmu");
+    let run = georod()
+        .args([
+            "fmu",
+            file.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--lib",
+        ])
+        .arg(library())
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let archive = zip::ZipArchive::new(std::fs::File::open(&out).unwrap()).unwrap();
+    let names: Vec<&str> = archive.file_names().collect();
+    for entry in [
+        "modelDescription.xml",
+        "resources/scene.toml",
+        "documentation/index.html",
+        "binaries/linux64/Good.so",
+    ] {
+        assert!(names.contains(&entry), "{entry} missing from {names:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
