@@ -14,10 +14,6 @@ use serde::{Deserialize, Serialize};
 pub const SERIAL_MAGIC: [u8; 8] = *b"GEOROD\x00S";
 /// Layout version of [`Body`]; bump it when the fields change.
 pub const SERIAL_VERSION: u32 = 2;
-/// Marks a live `FmuState` allocation (detects garbage and freed pointers where cheap).
-const STATE_MAGIC: u64 = 0x4745_4f52_4f44_5354; // "GEORODST"
-const FREED_MAGIC: u64 = 0xdead_dead_dead_dead;
-
 /// What an FMU state holds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StateData {
@@ -28,45 +24,6 @@ pub struct StateData {
     pub f_ctrl: f64,
     /// The simulation state; `None` before `fmi2ExitInitializationMode` (nothing simulated yet).
     pub snapshot: Option<Snapshot>,
-}
-
-/// The allocation behind an `fmi2FMUstate` pointer.
-#[repr(C)]
-pub struct FmuState {
-    /// First field, so it can be checked through a raw pointer before anything else is read.
-    magic: u64,
-    pub data: StateData,
-}
-
-impl FmuState {
-    pub fn into_raw(data: StateData) -> *mut FmuState {
-        Box::into_raw(Box::new(FmuState {
-            magic: STATE_MAGIC,
-            data,
-        }))
-    }
-
-    /// The state behind `p`, or `None` for NULL, misaligned or unmarked pointers.
-    ///
-    /// # Safety
-    /// `p` must be NULL or readable for `size_of::<u64>()` bytes; it is then a live `FmuState`
-    /// if its magic matches (a best-effort check, not a guarantee).
-    pub unsafe fn from_raw<'a>(p: *mut std::ffi::c_void) -> Option<&'a mut FmuState> {
-        let p = p as *mut FmuState;
-        if p.is_null() || !p.is_aligned() || std::ptr::addr_of!((*p).magic).read() != STATE_MAGIC {
-            return None;
-        }
-        Some(&mut *p)
-    }
-
-    /// Frees a state obtained from [`FmuState::into_raw`].
-    ///
-    /// # Safety
-    /// `state` must come from `into_raw` and not have been freed.
-    pub unsafe fn free(state: &mut FmuState) {
-        state.magic = FREED_MAGIC;
-        drop(Box::from_raw(state as *mut FmuState));
-    }
 }
 
 #[derive(Serialize, Deserialize)]

@@ -14,6 +14,7 @@
 //!   from `startTime`.
 use super::fmu_state::StateData;
 use super::logging::Logger;
+use super::state_registry::StateRegistry;
 use crate::scene::{SceneKind, SceneParams};
 use crate::simulation::{Outputs, SimError, Simulation};
 use crate::variables::{self, Causality, VarType, Variability, Variable};
@@ -194,6 +195,8 @@ pub struct Instance {
     /// From `fmi2ExitInitializationMode` on: the running simulation. Before: possibly the initial
     /// state built for an early output request, at `t = 0`, reused if the parameters still fit.
     sim: Option<Simulation>,
+    /// The FMU states handed out to the host (freed with the instance).
+    pub states: StateRegistry,
 }
 
 impl Instance {
@@ -214,6 +217,7 @@ impl Instance {
             params: SceneParams::defaults(kind),
             f_ctrl: f_ctrl_start(kind),
             sim: None,
+            states: StateRegistry::default(),
         }
     }
 

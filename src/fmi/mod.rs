@@ -10,11 +10,13 @@
 //!   per-instance logger;
 //! - [`instance`]: state machine, values, stepping (testable Rust);
 //! - [`fmu_state`]: FMU state snapshots and their serialized form;
+//! - [`state_registry`]: the state handles an instance gave out (checked before any use);
 //! - [`api`]: the exported `extern "C"` functions;
 //! - [`uri`]: `fmuResourceLocation` parsing.
 pub mod api;
 pub mod fmu_state;
 pub mod instance;
 pub mod logging;
+pub mod state_registry;
 pub mod types;
 pub mod uri;
