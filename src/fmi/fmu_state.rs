@@ -1,19 +1,39 @@
 //! FMU states (`fmi2GetFMUstate` & co.): everything needed to put an instance back exactly where
-//! it was, and its versioned binary form (`fmi2SerializeFMUstate`).
+//! it was, and its versioned, self-checking binary form (`fmi2SerializeFMUstate`).
 //!
-//! Serialized layout (bincode 1.3, fixed-width little-endian integers):
-//! `Header { magic: 8 bytes, format_version: u32, scene: String, elements: u64 }` then `Body`.
-//! The header is read first so that every mismatch gets its own clear message.
+//! Serialized layout, version 3 (all integers little-endian):
+//!
+//! | offset | size | field |
+//! |---:|---:|---|
+//! | 0 | 8 | magic `GEOROD\0S` |
+//! | 8 | 4 | format version (`u32`, [`SERIAL_VERSION`]) |
+//! | 12 | 4 | CRC-32 (IEEE, as zlib's `crc32`) of the whole buffer with these 4 bytes taken as 0 |
+//! | 16 | 8 | total length of the buffer in bytes (`u64`) |
+//! | 24 | .. | bincode 1.3 (fixed-width integers): `Header { guid, scene, elements }`, then `Body` |
+//!
+//! Reading checks, in this order, and refuses with a message at the first failure: length,
+//! magic, version, recorded length, checksum, the bincode payload (with no trailing bytes), the
+//! GUID / scene / element count against the instance, then every field
+//! ([`super::state_check`]). The CRC-32 detects every corruption of up to 32 consecutive bits
+//! (so every changed byte) and all but 2^-32 of random ones; it is a guard against accidents, the
+//! field checks against crafted states.
 use super::instance::{Experiment, FmiState};
+use super::state_check;
 use crate::scene::{SceneKind, SceneParams};
 use crate::simulation::Snapshot;
 use crate::variables::{self, Causality};
+use bincode::Options;
 use serde::{Deserialize, Serialize};
 
 /// First bytes of every serialized state.
 pub const SERIAL_MAGIC: [u8; 8] = *b"GEOROD\x00S";
-/// Layout version of [`Body`]; bump it when the fields change.
-pub const SERIAL_VERSION: u32 = 2;
+/// Layout version; bump it when the layout or the fields change.
+pub const SERIAL_VERSION: u32 = 3;
+/// Where the CRC-32 sits, and the length of the fixed prefix.
+const CRC_AT: usize = 12;
+const LENGTH_AT: usize = 16;
+pub const PREFIX_LEN: usize = 24;
+
 /// What an FMU state holds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StateData {
@@ -28,8 +48,8 @@ pub struct StateData {
 
 #[derive(Serialize, Deserialize)]
 struct Header {
-    magic: [u8; 8],
-    format_version: u32,
+    /// The GUID of the FMU that wrote the state: the same scene and the same variables.
+    guid: String,
     scene: String,
     elements: u64,
 }
@@ -45,13 +65,25 @@ struct Body {
     snapshot: Option<Snapshot>,
 }
 
-fn header_of(data: &StateData) -> Header {
-    Header {
-        magic: SERIAL_MAGIC,
-        format_version: SERIAL_VERSION,
-        scene: data.kind.name().to_string(),
-        elements: data.params.elements as u64,
-    }
+/// bincode 1.3's legacy encoding (fixed-width little-endian integers), reading at most `limit`
+/// bytes and nothing after the value.
+fn codec(limit: u64) -> impl Options {
+    bincode::DefaultOptions::new()
+        .with_fixint_encoding()
+        .with_limit(limit)
+}
+
+fn guid_of(kind: SceneKind) -> &'static str {
+    variables::GUIDS[kind.index()]
+}
+
+/// The CRC-32 of `bytes` with its checksum field taken as zero.
+pub fn checksum(bytes: &[u8]) -> u32 {
+    let mut h = crc32fast::Hasher::new();
+    h.update(&bytes[..CRC_AT]);
+    h.update(&[0; 4]);
+    h.update(&bytes[CRC_AT + 4..]);
+    h.finalize()
 }
 
 pub fn serialize(data: &StateData) -> Result<Vec<u8>, String> {
@@ -65,6 +97,11 @@ pub fn serialize(data: &StateData) -> Result<Vec<u8>, String> {
             )
         })
         .collect();
+    let header = Header {
+        guid: guid_of(data.kind).to_string(),
+        scene: data.kind.name().to_string(),
+        elements: data.params.elements as u64,
+    };
     let body = Body {
         fmi_state: data.fmi_state,
         experiment: data.experiment.clone(),
@@ -72,34 +109,78 @@ pub fn serialize(data: &StateData) -> Result<Vec<u8>, String> {
         f_ctrl: data.f_ctrl,
         snapshot: data.snapshot.clone(),
     };
-    let mut bytes = bincode::serialize(&header_of(data)).map_err(|e| e.to_string())?;
-    bytes.extend(bincode::serialize(&body).map_err(|e| e.to_string())?);
+    let mut bytes = Vec::with_capacity(PREFIX_LEN + 1024);
+    bytes.extend_from_slice(&SERIAL_MAGIC);
+    bytes.extend_from_slice(&SERIAL_VERSION.to_le_bytes());
+    bytes.extend_from_slice(&[0; 4 + 8]); // CRC and length, filled in below
+    codec(u64::MAX)
+        .serialize_into(&mut bytes, &(&header, &body))
+        .map_err(|e| e.to_string())?;
+    let len = bytes.len() as u64;
+    bytes[LENGTH_AT..PREFIX_LEN].copy_from_slice(&len.to_le_bytes());
+    let crc = checksum(&bytes);
+    bytes[CRC_AT..CRC_AT + 4].copy_from_slice(&crc.to_le_bytes());
     Ok(bytes)
 }
 
-/// Reads a serialized state for an instance of scene `kind` with `elements` elements.
-pub fn deserialize(bytes: &[u8], kind: SceneKind, elements: usize) -> Result<StateData, String> {
-    if bytes.len() < SERIAL_MAGIC.len() + 4 {
+fn u32_at(bytes: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"))
+}
+
+/// The prefix checks: everything up to and including the checksum.
+fn check_prefix(bytes: &[u8]) -> Result<(), String> {
+    if bytes.len() < PREFIX_LEN {
         return Err(format!(
-            "{} bytes is too short for a serialized georod FMU state",
+            "{} bytes is too short for a serialized georod FMU state (at least {PREFIX_LEN})",
             bytes.len()
         ));
     }
     if bytes[..SERIAL_MAGIC.len()] != SERIAL_MAGIC {
         return Err("not a serialized georod FMU state (wrong magic bytes)".to_string());
     }
-    let header: Header = bincode::deserialize(bytes)
-        .map_err(|e| format!("truncated or corrupt header of the serialized state ({e})"))?;
-    if header.format_version != SERIAL_VERSION {
+    let version = u32_at(bytes, SERIAL_MAGIC.len());
+    if version != SERIAL_VERSION {
         return Err(format!(
-            "serialized state format version {} (this FMU reads version {SERIAL_VERSION})",
-            header.format_version
+            "serialized state format version {version} (this FMU reads version {SERIAL_VERSION})"
         ));
     }
+    let recorded = u64::from_le_bytes(bytes[LENGTH_AT..PREFIX_LEN].try_into().expect("8 bytes"));
+    if recorded != bytes.len() as u64 {
+        return Err(format!(
+            "size = {} does not match the length recorded in the serialized state ({recorded} \
+             bytes): truncated, extended or corrupt",
+            bytes.len()
+        ));
+    }
+    let (stored, computed) = (u32_at(bytes, CRC_AT), checksum(bytes));
+    if stored != computed {
+        return Err(format!(
+            "checksum mismatch (stored CRC-32 {stored:#010x}, computed {computed:#010x}): the \
+             serialized state is corrupt"
+        ));
+    }
+    Ok(())
+}
+
+/// Reads a serialized state for an instance of scene `kind` with `elements` elements.
+pub fn deserialize(bytes: &[u8], kind: SceneKind, elements: usize) -> Result<StateData, String> {
+    check_prefix(bytes)?;
+    let payload = &bytes[PREFIX_LEN..];
+    let (header, body): (Header, Body) = codec(payload.len() as u64)
+        .deserialize(payload)
+        .map_err(|e| format!("corrupt serialized state ({e})"))?;
     if header.scene != kind.name() {
         return Err(format!(
             "the serialized state belongs to the {} scene, this instance is a {kind}",
             header.scene
+        ));
+    }
+    if header.guid != guid_of(kind) {
+        return Err(format!(
+            "the serialized state was written by another build of the {kind} FMU (GUID {}, \
+             this FMU has {})",
+            header.guid,
+            guid_of(kind)
         ));
     }
     if header.elements != elements as u64 {
@@ -108,42 +189,18 @@ pub fn deserialize(bytes: &[u8], kind: SceneKind, elements: usize) -> Result<Sta
             header.elements
         ));
     }
-    let header_len = bincode::serialized_size(&header).map_err(|e| e.to_string())? as usize;
-    let body: Body = bincode::deserialize(&bytes[header_len..])
-        .map_err(|e| format!("truncated or corrupt serialized state ({e})"))?;
-    let used = header_len + bincode::serialized_size(&body).map_err(|e| e.to_string())? as usize;
-    if used != bytes.len() {
-        return Err(format!(
-            "size {} does not match the serialized state ({used} bytes)",
-            bytes.len()
-        ));
-    }
-    let mut params = SceneParams::defaults(kind);
-    for (name, value) in &body.params {
-        params
-            .set(name, *value)
-            .map_err(|e| format!("in the serialized state: {e}"))?;
-    }
+    let params = state_check::params(kind, &body.params)?;
     if params.elements != elements {
         return Err("corrupt serialized state: `elements` disagrees with its header".to_string());
     }
-    if let Some(s) = &body.snapshot {
-        if s.kind != kind || s.elements != elements {
-            return Err(
-                "corrupt serialized state: the simulation snapshot disagrees with its header"
-                    .into(),
-            );
-        }
-    }
-    if !body.f_ctrl.is_finite() {
-        return Err("corrupt serialized state: f_ctrl is not finite".to_string());
-    }
-    Ok(StateData {
+    let data = StateData {
         kind,
         fmi_state: body.fmi_state,
         experiment: body.experiment,
         params,
         f_ctrl: body.f_ctrl,
         snapshot: body.snapshot,
-    })
+    };
+    state_check::fields(&data).map_err(|e| format!("corrupt serialized state: {e}"))?;
+    Ok(data)
 }

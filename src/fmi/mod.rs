@@ -9,7 +9,8 @@
 //! - [`logging`]: log categories ([`logging::LOG_CATEGORIES`], also used for the XML) and the
 //!   per-instance logger;
 //! - [`instance`]: state machine, values, stepping (testable Rust);
-//! - [`fmu_state`]: FMU state snapshots and their serialized form;
+//! - [`fmu_state`]: FMU state snapshots and their serialized, self-checking form;
+//! - [`state_check`]: field checks of a deserialized state;
 //! - [`state_registry`]: the state handles an instance gave out (checked before any use);
 //! - [`api`]: the exported `extern "C"` functions;
 //! - [`uri`]: `fmuResourceLocation` parsing.
@@ -17,6 +18,7 @@ pub mod api;
 pub mod fmu_state;
 pub mod instance;
 pub mod logging;
+pub mod state_check;
 pub mod state_registry;
 pub mod types;
 pub mod uri;
