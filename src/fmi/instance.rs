@@ -626,11 +626,15 @@ impl Instance {
                 tc - t
             ));
         }
+        // FMI 2.0 (fmi2SetupExperiment): computing past a defined stopTime is fmi2Error.
         if let Some(stop) = self.experiment.stop_time {
             if t + h > stop + tol.max(TIME_REL_TOL * stop.abs()) {
-                self.log.warning(&format!(
-                    "fmi2DoStep: step to t = {} goes past stopTime = {stop}",
-                    t + h
+                return error(format!(
+                    "the step would end at t = {:e} (currentCommunicationPoint {tc:e} + \
+                     communicationStepSize {h:e}), past stopTime = {stop:e} of \
+                     fmi2SetupExperiment; nothing was computed: a step of at most {:e} is allowed",
+                    t + h,
+                    stop - t
                 ));
             }
         }
