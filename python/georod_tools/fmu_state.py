@@ -5,11 +5,13 @@ The FMU has no setter for its internal displacements and velocities, but its ser
 documented byte layout (src/fmi/fmu_state.rs): decode the vectors, patch them, and
 ``fmi2DeSerializeFMUstate`` the bytes into the second instance.
 
-Layout (bincode 1.3 default options: little endian, fixed-width integers, u64 length prefixes,
-u8 Option tags, u32 enum variant indices, f64 as 8 bytes)::
+Layout (a fixed prefix, then bincode 1.3 default options: little endian, fixed-width integers,
+u64 length prefixes, u8 Option tags, u32 enum variant indices, f64 as 8 bytes)::
 
-    Header { magic: [u8; 8] = b"GEOROD\\0S", format_version: u32 (= 3), scene: String,
-             elements: u64 }
+    Prefix { magic: [u8; 8] = b"GEOROD\\0S", format_version: u32 (= 4),
+             crc32: u32 (zlib.crc32 of the whole buffer with these 4 bytes zero),
+             length: u64 (of the whole buffer) }
+    Header { guid: String, scene: String, elements: u64 }
     Body   { fmi_state: enum (u32), experiment: { tolerance: Option<f64>, start_time: f64,
              stop_time: Option<f64> }, params: Vec<(String, f64)>, inputs: Vec<Option<f64>>,
              snapshot: Option<Snapshot> }
@@ -22,20 +24,24 @@ u8 Option tags, u32 enum variant indices, f64 as 8 bytes)::
 
 The vectors hold 3 entries per node (u1, u2, w), held ones included (src/model/rod.rs). Which
 dofs the supports hold is read from the scene file the FMU carries (resources/scene.toml).
-Patching replaces values in place, so the layout and length never change.
+Patching replaces values in place, so the layout and length never change; the checksum is then
+recomputed (:func:`sign`), as the FMU refuses a state whose CRC-32 does not match.
 """
 
 from __future__ import annotations
 
 import struct
 import tomllib
+import zlib
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 MAGIC = b"GEOROD\x00S"
-FORMAT_VERSION = 3
+FORMAT_VERSION = 4
+CRC_AT = 12  # offset of the CRC-32 (u32) in the prefix
+PREFIX_LEN = 24  # magic, version, CRC-32, length
 SNAPSHOT_VERSION = 3
 DOFS_PER_NODE = 3
 DOF_NAMES = ("u1", "u2", "w")
@@ -43,6 +49,20 @@ DOF_NAMES = ("u1", "u2", "w")
 
 class StateFormatError(ValueError):
     """The bytes are not a serialized georod state this module understands."""
+
+
+def checksum(blob: bytes) -> int:
+    """The CRC-32 of a serialized state with its own checksum field taken as zero."""
+    b = bytes(blob)
+    return zlib.crc32(b[:CRC_AT] + b"\x00" * 4 + b[CRC_AT + 4 :])
+
+
+def sign(blob: bytes) -> bytes:
+    """`blob` with its recorded length and CRC-32 recomputed (after patching it)."""
+    out = bytearray(blob)
+    out[16:PREFIX_LEN] = struct.pack("<Q", len(out))
+    out[CRC_AT : CRC_AT + 4] = struct.pack("<I", checksum(bytes(out)))
+    return bytes(out)
 
 
 class _Reader:
@@ -102,6 +122,7 @@ class DecodedState:
     params: dict[str, float]
     u_offset: int
     v_offset: int
+    guid: str = ""
 
     @property
     def dofs(self) -> int:
@@ -110,7 +131,8 @@ class DecodedState:
 
 def decode_state(blob: bytes) -> DecodedState:
     """Decodes a serialized georod FMU state; raises :class:`StateFormatError` on anything
-    unexpected (wrong magic, version, truncation, trailing bytes, no simulation snapshot)."""
+    unexpected (wrong magic, version, truncation, trailing bytes, checksum, no simulation
+    snapshot)."""
     r = _Reader(bytes(blob))
     if r.take(8) != MAGIC:
         raise StateFormatError("not a serialized georod FMU state (wrong magic bytes)")
@@ -119,6 +141,15 @@ def decode_state(blob: bytes) -> DecodedState:
         raise StateFormatError(
             f"serialized state format {version}, this module reads {FORMAT_VERSION}"
         )
+    crc = r.u32()
+    length = r.u64()
+    if length > len(r.data):
+        raise StateFormatError(f"truncated serialized state: {len(r.data)} of {length} bytes")
+    if length < len(r.data):
+        raise StateFormatError(f"{len(r.data) - length} unexpected trailing bytes")
+    if crc != checksum(r.data):
+        raise StateFormatError("checksum mismatch: the serialized state is corrupt")
+    guid = r.string()
     scene = r.string()
     elements = r.u64()
     r.u32()  # fmi_state
@@ -159,7 +190,7 @@ def decode_state(blob: bytes) -> DecodedState:
     dofs = DOFS_PER_NODE * (elements + 1)
     if u.size != dofs or v.size != dofs:
         raise StateFormatError(f"vectors of length {u.size}/{v.size}, expected {dofs}")
-    return DecodedState(scene, elements, time, u, v, params, u_off, v_off)
+    return DecodedState(scene, elements, time, u, v, params, u_off, v_off, guid)
 
 
 def encode_state(template: bytes, displacements: np.ndarray, velocities: np.ndarray) -> bytes:
@@ -174,7 +205,7 @@ def encode_state(template: bytes, displacements: np.ndarray, velocities: np.ndar
     out = bytearray(template)
     out[st.u_offset : st.u_offset + 8 * st.dofs] = u.tobytes()
     out[st.v_offset : st.v_offset + 8 * st.dofs] = v.tobytes()
-    return bytes(out)
+    return sign(bytes(out))
 
 
 def free_mask(scene_file: Path, elements: int) -> np.ndarray:
@@ -202,13 +233,16 @@ def build_state(
     displacements: np.ndarray,
     velocities: np.ndarray,
     params: dict[str, float] | None = None,
+    guid: str = "",
 ) -> bytes:
     """A complete serialized state in the same layout (for unit tests of the codec without an
-    FMU; the FMU would also accept it if `params` listed every parameter of the scene)."""
+    FMU; the FMU would also accept it if `guid` were its GUID and `params` listed every
+    parameter of the scene, in its order)."""
     u = np.asarray(displacements, dtype="<f8")
     v = np.asarray(velocities, dtype="<f8")
     out = bytearray(MAGIC)
-    out += struct.pack("<I", FORMAT_VERSION) + _w_string(scene) + struct.pack("<Q", elements)
+    out += struct.pack("<IIQ", FORMAT_VERSION, 0, 0)  # CRC and length: sign() below
+    out += _w_string(guid) + _w_string(scene) + struct.pack("<Q", elements)
     out += struct.pack("<I", 2)  # fmi_state = StepComplete
     out += b"\x00" + struct.pack("<d", 0.0) + b"\x00"  # experiment
     params = params or {}
@@ -225,4 +259,4 @@ def build_state(
     out += struct.pack("<I", 0)  # last_newton_iterations
     out += struct.pack("<ddddd", 0.0, 0.0, 0.0, 0.0, 0.0)  # energy ledger
     out += struct.pack("<ddQ", time, 0.0, 0)  # clock: origin = time, no sub-steps counted
-    return bytes(out)
+    return sign(bytes(out))

@@ -59,6 +59,7 @@ def test_encode_patches_in_place() -> None:
         (lambda b: b[:40], "truncated"),
         (lambda b: b + b"\x00", "trailing"),
         (lambda b: b[:8] + b"\x63" + b[9:], "format"),  # format version 99
+        (lambda b: b[:-1] + bytes([b[-1] ^ 1]), "checksum"),
     ],
 )
 def test_bad_bytes_are_refused(mangle, match: str) -> None:  # noqa: ANN001

@@ -23,7 +23,9 @@ EXAMPLES = tuple(sorted(p.stem for p in (REPO / "examples").glob("*.toml")))
 
 
 @pytest.fixture(scope="session")
-def examples(fmu_paths: dict[str, Path], tmp_path_factory: pytest.TempPathFactory) -> dict[str, FmuInfo]:
+def examples(
+    fmu_paths: dict[str, Path], tmp_path_factory: pytest.TempPathFactory
+) -> dict[str, FmuInfo]:
     """The example FMUs (scripts/build_fmus packages them with the scenes), each extracted once."""
     root = tmp_path_factory.mktemp("examples")
     infos = {}

@@ -6,7 +6,10 @@
  *
  * Cycle: instantiate, setupExperiment, set parameters, enter/exit initialization, STEPS doSteps
  * reading every output, get/set FMU state (roll back and compare), serialize / deserialize,
- * a few refused calls (error paths with the logger), terminate, freeInstance, dlclose.
+ * hostile state handling (a corrupt buffer, garbage in deserialize's output slot, stale, double
+ * freed, foreign, garbage and unmapped handles: each refused without touching its memory),
+ * a few refused calls (error paths with the logger), terminate, and freeInstance with FMU
+ * states the host never freed (they must go with the instance: no definite leak), dlclose.
  * Exit status 0 when every call answered as expected, 2 otherwise.
  */
 #include <dlfcn.h>
@@ -181,14 +184,52 @@ int main(int argc, char **argv) {
     EXPECT(fmi2SerializeFMUstate(c, state, bytes, size), fmi2OK);
     EXPECT(fmi2DeSerializeFMUstate(c, bytes, size, &restored), fmi2OK);
     EXPECT(fmi2SetFMUstate(c, restored), fmi2OK);
-    /* deserialize into an existing state (re-use) and garbage (refused) */
+    /* *FMUstate is an output of deserialize: a held state there is not reused (it stays valid
+       and owned by the instance), garbage there is not read; a corrupt buffer is refused */
+    fmi2FMUstate held = restored, unmapped = (fmi2FMUstate)0x10;
     EXPECT(fmi2DeSerializeFMUstate(c, bytes, size, &restored), fmi2OK);
+    EXPECT(fmi2SetFMUstate(c, held), fmi2OK);
+    fmi2FMUstate slot = unmapped;
+    EXPECT(fmi2DeSerializeFMUstate(c, bytes, size, &slot), fmi2OK);
     EXPECT(fmi2DeSerializeFMUstate(c, "garbage", 7, &restored), fmi2Error);
+    bytes[size / 2] ^= 0x40;
+    EXPECT(fmi2DeSerializeFMUstate(c, bytes, size, &slot), fmi2Error);
     free(bytes);
     EXPECT(fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t_last), fmi2OK);
 
+    /* stale and double-freed handles: refused, nothing read */
+    fmi2FMUstate stale = state;
     EXPECT(fmi2FreeFMUstate(c, &state), fmi2OK);
+    EXPECT(fmi2SetFMUstate(c, stale), fmi2Error);
+    EXPECT(fmi2SerializedFMUstateSize(c, stale, &size), fmi2Error);
+    EXPECT(fmi2FreeFMUstate(c, &stale), fmi2Error);
+    EXPECT(fmi2FreeFMUstate(c, &state), fmi2OK); /* NULL now: ignored */
     EXPECT(fmi2FreeFMUstate(c, &restored), fmi2OK);
+    /* garbage handles: uninitialised heap (valgrind reports any read of it), unmapped */
+    fmi2FMUstate junk = malloc(64);
+    EXPECT(fmi2SetFMUstate(c, junk), fmi2Error);
+    EXPECT(fmi2FreeFMUstate(c, &junk), fmi2Error);
+    EXPECT(fmi2SetFMUstate(c, unmapped), fmi2Error);
+    char out_buf[16];
+    EXPECT(fmi2SerializeFMUstate(c, unmapped, out_buf, sizeof out_buf), fmi2Error);
+    free(junk);
+    /* garbage in fmi2GetFMUstate's slot: a new state (fmi2Warning), the garbage is not read */
+    fmi2FMUstate fresh = unmapped;
+    EXPECT(fmi2GetFMUstate(c, &fresh), fmi2Warning);
+    /* another instance's state: refused here; that instance is freed with its state unfreed */
+    fmi2Component e = fmi2Instantiate("valgrind3", fmi2CoSimulation, guid, resources, &cb, 0, 0);
+    fmi2FMUstate foreign = NULL;
+    if (e) {
+        EXPECT(fmi2GetFMUstate(e, &foreign), fmi2OK);
+        EXPECT(fmi2SetFMUstate(c, foreign), fmi2Error);
+        EXPECT(fmi2FreeFMUstate(c, &foreign), fmi2Error);
+        fmi2FreeInstance(e);
+    } else {
+        failures++;
+    }
+    /* left for fmi2FreeInstance: held, slot, fresh and one more */
+    fmi2FMUstate unfreed = NULL;
+    EXPECT(fmi2GetFMUstate(c, &unfreed), fmi2OK);
 
     /* refused calls: unknown value reference, NULL state, NaN input (the instance may be in the
        error state afterwards, so terminate's answer is not checked) */

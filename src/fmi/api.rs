@@ -10,7 +10,6 @@
 // Names follow the C headers (fmi2GetReal, loggingOn, fmi2Terminated, ...).
 #![allow(clippy::missing_safety_doc, non_snake_case, non_upper_case_globals)]
 
-use super::fmu_state::{self, FmuState};
 use super::instance::{error, mask, Failure, FmiResult, Instance};
 use super::logging::Logger;
 use super::types::*;
@@ -227,7 +226,11 @@ pub unsafe extern "C" fn fmi2FreeInstance(c: fmi2Component) {
     // SAFETY: best-effort pointer check; the instance was made by Box::into_raw in Instantiate.
     if let Some(inst) = Instance::from_raw(c) {
         let _ = catch_unwind(AssertUnwindSafe(|| {
-            inst.log.event(|| "instance freed".to_string());
+            // The states the host did not free go with the instance (its registry owns them).
+            let unfreed = inst.states.len();
+            inst.log.event(|| {
+                format!("instance freed, with {unfreed} FMU states not freed by the host")
+            });
             Instance::free(inst);
         }));
     }
@@ -390,47 +393,59 @@ pub unsafe extern "C" fn fmi2SetString(
 }
 
 // ----- FMU state ------------------------------------------------------------------------------
+//
+// A state handle is checked against the instance's registry (`inst.states`) before it is used:
+// freed, foreign and garbage handles are refused without reading the memory they point to.
 
-/// The state behind an `fmi2FMUstate`, or an error naming what is wrong with the pointer.
-unsafe fn fmu_state<'a>(s: fmi2FMUstate) -> FmiResult<&'a mut FmuState> {
-    if s.is_null() {
-        return error("FMUstate is NULL");
-    }
-    FmuState::from_raw(s).ok_or_else(|| {
-        Failure::Error(
-            "FMUstate is not a live FMU state of this FMU (freed or foreign pointer)".into(),
-        )
-    })
-}
-
+/// Takes a copy of the instance's state. `*FMUstate` NULL: a new state. `*FMUstate` a live state
+/// of this instance: updated in place (FMI 2.0 section 2.1.8). Anything else breaks the
+/// standard's precondition; it is never dereferenced nor freed: a new state is written over it
+/// and the call returns `fmi2Warning` (some hosts pass an uninitialized slot).
 #[no_mangle]
 pub unsafe extern "C" fn fmi2GetFMUstate(
     c: fmi2Component,
     FMUstate: *mut fmi2FMUstate,
 ) -> fmi2Status {
-    with_instance(c, "fmi2GetFMUstate", |inst| {
+    let mut replaced_foreign = false;
+    let status = with_instance(c, "fmi2GetFMUstate", |inst| {
         inst.require(mask::ANY)?;
         let slot = out_ref(FMUstate, "FMUstate")?;
         let data = inst.get_fmu_state()?;
-        if slot.is_null() {
-            *slot = FmuState::into_raw(data) as fmi2FMUstate;
-        } else {
-            // The standard: a non-NULL *FMUstate is a previous state to be updated in place.
-            fmu_state(*slot)?.data = data;
+        let old = *slot;
+        if inst.states.owns(old) {
+            return inst.states.replace(old, data, "*FMUstate");
         }
+        if !old.is_null() {
+            inst.log.warning_status(&format!(
+                "fmi2GetFMUstate: *FMUstate = {old:p} is neither NULL nor a live state of this \
+                 instance (FMI 2.0 allows only these); it was not used, a new state was \
+                 allocated and written over it"
+            ));
+            replaced_foreign = true;
+        }
+        *slot = inst.states.add(data);
         Ok(())
-    })
+    });
+    if status == fmi2Status::OK && replaced_foreign {
+        fmi2Status::Warning
+    } else {
+        status
+    }
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetFMUstate(c: fmi2Component, FMUstate: fmi2FMUstate) -> fmi2Status {
     with_instance(c, "fmi2SetFMUstate", |inst| {
         inst.require(mask::ANY)?;
-        inst.set_fmu_state(&fmu_state(FMUstate)?.data)
+        // A copy: the registry lives in the instance that set_fmu_state changes.
+        let data = inst.states.get(FMUstate, "FMUstate")?.clone();
+        inst.set_fmu_state(&data)
     })
 }
 
-/// Frees a state and sets `*FMUstate = NULL`; NULL (either level) is ignored.
+/// Frees a state and sets `*FMUstate = NULL`; NULL (either level) is ignored (FMI 2.0). A handle
+/// that is not a live state of this instance (freed already, another instance's, garbage) is
+/// refused and left as it is.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2FreeFMUstate(
     c: fmi2Component,
@@ -438,11 +453,14 @@ pub unsafe extern "C" fn fmi2FreeFMUstate(
 ) -> fmi2Status {
     with_instance(c, "fmi2FreeFMUstate", |inst| {
         inst.require(mask::ANY)?;
-        if FMUstate.is_null() || (*FMUstate).is_null() {
+        if FMUstate.is_null() {
             return Ok(());
         }
         let slot = out_ref(FMUstate, "FMUstate")?;
-        FmuState::free(fmu_state(*slot)?);
+        if slot.is_null() {
+            return Ok(());
+        }
+        inst.states.free(*slot, "*FMUstate")?;
         *slot = std::ptr::null_mut();
         Ok(())
     })
@@ -456,11 +474,8 @@ pub unsafe extern "C" fn fmi2SerializedFMUstateSize(
 ) -> fmi2Status {
     with_instance(c, "fmi2SerializedFMUstateSize", |inst| {
         inst.require(mask::ANY)?;
-        let state = fmu_state(FMUstate)?;
-        let size = out_ref(size, "size")?;
-        *size = fmu_state::serialize(&state.data, inst.scene())
-            .map_err(Failure::Error)?
-            .len();
+        let bytes = inst.serialize_state(FMUstate)?;
+        *out_ref(size, "size")? = bytes.len();
         Ok(())
     })
 }
@@ -474,8 +489,7 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
 ) -> fmi2Status {
     with_instance(c, "fmi2SerializeFMUstate", |inst| {
         inst.require(mask::ANY)?;
-        let bytes = fmu_state::serialize(&fmu_state(FMUstate)?.data, inst.scene())
-            .map_err(Failure::Error)?;
+        let bytes = inst.serialize_state(FMUstate)?;
         if size != bytes.len() {
             return error(format!(
                 "size = {size} differs from the serialized size {} (ask fmi2SerializedFMUstateSize)",
@@ -490,7 +504,9 @@ pub unsafe extern "C" fn fmi2SerializeFMUstate(
     })
 }
 
-/// Always allocates a new state (`*FMUstate` is an output only and is not read).
+/// Always allocates a new state and writes its handle to `*FMUstate`, which is an output only:
+/// it is never read, and a state it held stays valid (free it separately). On a refusal
+/// `*FMUstate` is left as it was.
 #[no_mangle]
 pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
     c: fmi2Component,
@@ -502,15 +518,8 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         inst.require(mask::ANY)?;
         let bytes = input(serializedState as *const u8, size, "serializedState")?;
         let slot = out_ref(FMUstate, "FMUstate")?;
-        let data = fmu_state::deserialize(bytes, inst.scene(), inst.params().elements())
-            .map_err(Failure::Error)?;
-        // Like fmi2GetFMUstate: a state passed in is reused (fmpy passes one "for re-use");
-        // overwriting the pointer would leak it.
-        if slot.is_null() {
-            *slot = FmuState::into_raw(data) as fmi2FMUstate;
-        } else {
-            fmu_state(*slot)?.data = data;
-        }
+        let data = inst.deserialize_state(bytes)?;
+        *slot = inst.states.add(data);
         inst.log
             .event(|| format!("FMU state deserialized ({size} bytes)"));
         Ok(())

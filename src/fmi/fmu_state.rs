@@ -1,21 +1,37 @@
 //! FMU states (`fmi2GetFMUstate` & co.): everything needed to put an instance back exactly where
-//! it was, and its versioned binary form (`fmi2SerializeFMUstate`).
+//! it was, and its versioned, self-checking binary form (`fmi2SerializeFMUstate`).
 //!
-//! Serialized layout (bincode 1.3, fixed-width little-endian integers):
-//! `Header { magic: 8 bytes, format_version: u32, scene: String, elements: u64 }` then `Body`.
-//! The header is read first so that every mismatch gets its own clear message.
+//! Serialized layout, version 4 (all integers little-endian):
+//!
+//! | offset | size | field |
+//! |---:|---:|---|
+//! | 0 | 8 | magic `GEOROD\0S` |
+//! | 8 | 4 | format version (`u32`, [`SERIAL_VERSION`]) |
+//! | 12 | 4 | CRC-32 (IEEE, as zlib's `crc32`) of the whole buffer with these 4 bytes taken as 0 |
+//! | 16 | 8 | total length of the buffer in bytes (`u64`) |
+//! | 24 | .. | bincode 1.3 (fixed-width integers): `Header { guid, scene, elements }`, then `Body` |
+//!
+//! Reading checks, in this order, and refuses with a message at the first failure: length,
+//! magic, version, recorded length, checksum, the bincode payload (with no trailing bytes), the
+//! GUID / scene / element count against the instance, then every field
+//! ([`super::state_check`]). The CRC-32 detects every corruption of up to 32 consecutive bits
+//! (so every changed byte) and all but 2^-32 of random ones; it is a guard against accidents, the
+//! field checks against crafted states.
 use super::instance::{Experiment, FmiState};
+use super::state_check;
 use crate::scene::{ParamValues, Scene};
 use crate::simulation::Snapshot;
+use bincode::Options;
 use serde::{Deserialize, Serialize};
 
 /// First bytes of every serialized state.
 pub const SERIAL_MAGIC: [u8; 8] = *b"GEOROD\x00S";
-/// Layout version of [`Body`]; bump it when the fields change.
-pub const SERIAL_VERSION: u32 = 3;
-/// Marks a live `FmuState` allocation (detects garbage and freed pointers where cheap).
-const STATE_MAGIC: u64 = 0x4745_4f52_4f44_5354; // "GEORODST"
-const FREED_MAGIC: u64 = 0xdead_dead_dead_dead;
+/// Layout version; bump it when the layout or the fields change.
+pub const SERIAL_VERSION: u32 = 4;
+/// Where the CRC-32 sits, and the length of the fixed prefix.
+const CRC_AT: usize = 12;
+const LENGTH_AT: usize = 16;
+pub const PREFIX_LEN: usize = 24;
 
 /// What an FMU state holds.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,49 +47,10 @@ pub struct StateData {
     pub snapshot: Option<Snapshot>,
 }
 
-/// The allocation behind an `fmi2FMUstate` pointer.
-#[repr(C)]
-pub struct FmuState {
-    /// First field, so it can be checked through a raw pointer before anything else is read.
-    magic: u64,
-    pub data: StateData,
-}
-
-impl FmuState {
-    pub fn into_raw(data: StateData) -> *mut FmuState {
-        Box::into_raw(Box::new(FmuState {
-            magic: STATE_MAGIC,
-            data,
-        }))
-    }
-
-    /// The state behind `p`, or `None` for NULL, misaligned or unmarked pointers.
-    ///
-    /// # Safety
-    /// `p` must be NULL or readable for `size_of::<u64>()` bytes; it is then a live `FmuState`
-    /// if its magic matches (a best-effort check, not a guarantee).
-    pub unsafe fn from_raw<'a>(p: *mut std::ffi::c_void) -> Option<&'a mut FmuState> {
-        let p = p as *mut FmuState;
-        if p.is_null() || !p.is_aligned() || std::ptr::addr_of!((*p).magic).read() != STATE_MAGIC {
-            return None;
-        }
-        Some(&mut *p)
-    }
-
-    /// Frees a state obtained from [`FmuState::into_raw`].
-    ///
-    /// # Safety
-    /// `state` must come from `into_raw` and not have been freed.
-    pub unsafe fn free(state: &mut FmuState) {
-        state.magic = FREED_MAGIC;
-        drop(Box::from_raw(state as *mut FmuState));
-    }
-}
-
 #[derive(Serialize, Deserialize)]
 struct Header {
-    magic: [u8; 8],
-    format_version: u32,
+    /// The GUID of the FMU that wrote the state: the same scene and the same variables.
+    guid: String,
     scene: String,
     elements: u64,
 }
@@ -88,22 +65,36 @@ struct Body {
     snapshot: Option<Snapshot>,
 }
 
-fn header_of(data: &StateData) -> Header {
-    Header {
-        magic: SERIAL_MAGIC,
-        format_version: SERIAL_VERSION,
-        scene: data.scene.clone(),
-        elements: data.params.elements() as u64,
-    }
+/// bincode 1.3's legacy encoding (fixed-width little-endian integers), reading at most `limit`
+/// bytes and nothing after the value.
+fn codec(limit: u64) -> impl Options {
+    bincode::DefaultOptions::new()
+        .with_fixint_encoding()
+        .with_limit(limit)
 }
 
-pub fn serialize(data: &StateData, scene: &Scene) -> Result<Vec<u8>, String> {
+/// The CRC-32 of `bytes` with its checksum field taken as zero.
+pub fn checksum(bytes: &[u8]) -> u32 {
+    let mut h = crc32fast::Hasher::new();
+    h.update(&bytes[..CRC_AT]);
+    h.update(&[0; 4]);
+    h.update(&bytes[CRC_AT + 4..]);
+    h.finalize()
+}
+
+/// The bytes of a state of `scene` taken by an FMU with this `guid`.
+pub fn serialize(data: &StateData, scene: &Scene, guid: &str) -> Result<Vec<u8>, String> {
     let params = scene
         .params
         .iter()
         .zip(&data.params.0)
         .map(|(p, &x)| (p.name.clone(), x))
         .collect();
+    let header = Header {
+        guid: guid.to_string(),
+        scene: data.scene.clone(),
+        elements: data.params.elements() as u64,
+    };
     let body = Body {
         fmi_state: data.fmi_state,
         experiment: data.experiment.clone(),
@@ -111,34 +102,83 @@ pub fn serialize(data: &StateData, scene: &Scene) -> Result<Vec<u8>, String> {
         inputs: data.inputs.clone(),
         snapshot: data.snapshot.clone(),
     };
-    let mut bytes = bincode::serialize(&header_of(data)).map_err(|e| e.to_string())?;
-    bytes.extend(bincode::serialize(&body).map_err(|e| e.to_string())?);
+    let mut bytes = Vec::with_capacity(PREFIX_LEN + 1024);
+    bytes.extend_from_slice(&SERIAL_MAGIC);
+    bytes.extend_from_slice(&SERIAL_VERSION.to_le_bytes());
+    bytes.extend_from_slice(&[0; 4 + 8]); // CRC and length, filled in below
+    codec(u64::MAX)
+        .serialize_into(&mut bytes, &(&header, &body))
+        .map_err(|e| e.to_string())?;
+    let len = bytes.len() as u64;
+    bytes[LENGTH_AT..PREFIX_LEN].copy_from_slice(&len.to_le_bytes());
+    let crc = checksum(&bytes);
+    bytes[CRC_AT..CRC_AT + 4].copy_from_slice(&crc.to_le_bytes());
     Ok(bytes)
 }
 
-/// Reads a serialized state for an instance of `scene` with `elements` elements.
-pub fn deserialize(bytes: &[u8], scene: &Scene, elements: usize) -> Result<StateData, String> {
-    if bytes.len() < SERIAL_MAGIC.len() + 4 {
+fn u32_at(bytes: &[u8], at: usize) -> u32 {
+    u32::from_le_bytes(bytes[at..at + 4].try_into().expect("4 bytes"))
+}
+
+/// The prefix checks: everything up to and including the checksum.
+fn check_prefix(bytes: &[u8]) -> Result<(), String> {
+    if bytes.len() < PREFIX_LEN {
         return Err(format!(
-            "{} bytes is too short for a serialized georod FMU state",
+            "{} bytes is too short for a serialized georod FMU state (at least {PREFIX_LEN})",
             bytes.len()
         ));
     }
     if bytes[..SERIAL_MAGIC.len()] != SERIAL_MAGIC {
         return Err("not a serialized georod FMU state (wrong magic bytes)".to_string());
     }
-    let header: Header = bincode::deserialize(bytes)
-        .map_err(|e| format!("truncated or corrupt header of the serialized state ({e})"))?;
-    if header.format_version != SERIAL_VERSION {
+    let version = u32_at(bytes, SERIAL_MAGIC.len());
+    if version != SERIAL_VERSION {
         return Err(format!(
-            "serialized state format version {} (this FMU reads version {SERIAL_VERSION})",
-            header.format_version
+            "serialized state format version {version} (this FMU reads version {SERIAL_VERSION})"
         ));
     }
+    let recorded = u64::from_le_bytes(bytes[LENGTH_AT..PREFIX_LEN].try_into().expect("8 bytes"));
+    if recorded != bytes.len() as u64 {
+        return Err(format!(
+            "size = {} does not match the length recorded in the serialized state ({recorded} \
+             bytes): truncated, extended or corrupt",
+            bytes.len()
+        ));
+    }
+    let (stored, computed) = (u32_at(bytes, CRC_AT), checksum(bytes));
+    if stored != computed {
+        return Err(format!(
+            "checksum mismatch (stored CRC-32 {stored:#010x}, computed {computed:#010x}): the \
+             serialized state is corrupt"
+        ));
+    }
+    Ok(())
+}
+
+/// Reads a serialized state for an instance of `scene` (its FMU's `guid`) with `elements`
+/// elements.
+pub fn deserialize(
+    bytes: &[u8],
+    scene: &Scene,
+    guid: &str,
+    elements: usize,
+) -> Result<StateData, String> {
+    check_prefix(bytes)?;
+    let payload = &bytes[PREFIX_LEN..];
+    let (header, body): (Header, Body) = codec(payload.len() as u64)
+        .deserialize(payload)
+        .map_err(|e| format!("corrupt serialized state ({e})"))?;
     if header.scene != scene.name {
         return Err(format!(
             "the serialized state belongs to the {} scene, this instance is a {}",
             header.scene, scene.name
+        ));
+    }
+    if header.guid != guid {
+        return Err(format!(
+            "the serialized state was written by another build of the {} FMU (GUID {}, \
+             this FMU has {guid})",
+            scene.name, header.guid
         ));
     }
     if header.elements != elements as u64 {
@@ -147,53 +187,18 @@ pub fn deserialize(bytes: &[u8], scene: &Scene, elements: usize) -> Result<State
             header.elements
         ));
     }
-    let header_len = bincode::serialized_size(&header).map_err(|e| e.to_string())? as usize;
-    let body: Body = bincode::deserialize(&bytes[header_len..])
-        .map_err(|e| format!("truncated or corrupt serialized state ({e})"))?;
-    let used = header_len + bincode::serialized_size(&body).map_err(|e| e.to_string())? as usize;
-    if used != bytes.len() {
-        return Err(format!(
-            "size {} does not match the serialized state ({used} bytes)",
-            bytes.len()
-        ));
-    }
-    let mut params = scene.defaults();
-    if body.params.len() != scene.params.len() {
-        return Err(format!(
-            "corrupt serialized state: {} parameters, the scene has {}",
-            body.params.len(),
-            scene.params.len()
-        ));
-    }
-    for (name, value) in &body.params {
-        scene
-            .set(&mut params, name, *value)
-            .map_err(|e| format!("in the serialized state: {e}"))?;
-    }
+    let params = state_check::params(scene, &body.params)?;
     if params.elements() != elements {
         return Err("corrupt serialized state: `elements` disagrees with its header".to_string());
     }
-    if let Some(s) = &body.snapshot {
-        if s.scene != scene.name || s.elements != elements {
-            return Err(
-                "corrupt serialized state: the simulation snapshot disagrees with its header"
-                    .into(),
-            );
-        }
-    }
-    if body.inputs.len() != scene.inputs.len()
-        || body.inputs.iter().flatten().any(|x| !x.is_finite())
-    {
-        return Err(
-            "corrupt serialized state: wrong number of inputs or a non-finite input".to_string(),
-        );
-    }
-    Ok(StateData {
+    let data = StateData {
         scene: scene.name.clone(),
         fmi_state: body.fmi_state,
         experiment: body.experiment,
         params,
         inputs: body.inputs,
         snapshot: body.snapshot,
-    })
+    };
+    state_check::fields(&data, scene).map_err(|e| format!("corrupt serialized state: {e}"))?;
+    Ok(data)
 }

@@ -17,6 +17,7 @@
 use super::fmu_state::StateData;
 use super::interface::Interface;
 use super::logging::Logger;
+use super::state_registry::StateRegistry;
 use crate::scene::variables::input_start;
 use crate::scene::{ParamValues, Scene, Variability};
 use crate::simulation::{SimError, Simulation};
@@ -175,6 +176,8 @@ pub struct Instance {
     /// From `fmi2ExitInitializationMode` on: the running simulation. Before: possibly the initial
     /// state built for an early output request, at `t = 0`, reused if the parameters still fit.
     sim: Option<Simulation>,
+    /// The FMU states handed out to the host (freed with the instance).
+    pub states: StateRegistry,
 }
 
 impl Instance {
@@ -195,6 +198,7 @@ impl Instance {
             resource_dir,
             experiment: Experiment::default(),
             sim: None,
+            states: StateRegistry::default(),
         }
     }
 
@@ -447,11 +451,15 @@ impl Instance {
                 tc - t
             ));
         }
+        // FMI 2.0 (fmi2SetupExperiment): computing past a defined stopTime is fmi2Error.
         if let Some(stop) = self.experiment.stop_time {
             if t + h > stop + tol.max(TIME_REL_TOL * stop.abs()) {
-                self.log.warning(&format!(
-                    "fmi2DoStep: step to t = {} goes past stopTime = {stop}",
-                    t + h
+                return error(format!(
+                    "the step would end at t = {:e} (currentCommunicationPoint {tc:e} + \
+                     communicationStepSize {h:e}), past stopTime = {stop:e} of \
+                     fmi2SetupExperiment; nothing was computed: a step of at most {:e} is allowed",
+                    t + h,
+                    stop - t
                 ));
             }
         }
@@ -542,6 +550,20 @@ impl Instance {
             inputs: self.inputs.clone(),
             snapshot,
         })
+    }
+
+    /// The serialized form of the state behind `handle` (one this instance gave out).
+    pub fn serialize_state(&self, handle: super::types::fmi2FMUstate) -> FmiResult<Vec<u8>> {
+        let data = self.states.get(handle, "FMUstate")?;
+        super::fmu_state::serialize(data, self.scene(), &self.interface.guid)
+            .map_err(Failure::Error)
+    }
+
+    /// A serialized state read back and checked against this instance.
+    pub fn deserialize_state(&self, bytes: &[u8]) -> FmiResult<StateData> {
+        let (scene, guid) = (self.scene(), &self.interface.guid);
+        super::fmu_state::deserialize(bytes, scene, guid, self.params.elements())
+            .map_err(Failure::Error)
     }
 
     /// Checks that an FMU state fits this instance (scene and element count).

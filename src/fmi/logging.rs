@@ -110,6 +110,11 @@ impl Logger {
         self.emit(fmi2Status::Warning, Category::StatusWarning, text);
     }
 
+    /// The reason of a call that returns `fmi2Warning`: always logged (the host must learn why).
+    pub fn warning_status(&self, text: &str) {
+        self.send(fmi2Status::Warning, Category::StatusWarning, text);
+    }
+
     /// A change of the instance's state; the text is only built when it will be sent.
     pub fn event(&self, text: impl FnOnce() -> String) {
         if self.wants(Category::Events) {

@@ -13,7 +13,9 @@
 //! - [`interface`]: the scene of an FMU and its variables;
 //! - [`instance`]: state machine, stepping, FMU states (testable Rust);
 //! - [`values`]: getting and setting variables;
-//! - [`fmu_state`]: FMU state snapshots and their serialized form;
+//! - [`fmu_state`]: FMU state snapshots and their serialized, self-checking form;
+//! - [`state_check`]: field checks of a deserialized state;
+//! - [`state_registry`]: the state handles an instance gave out (checked before any use);
 //! - [`api`]: the exported `extern "C"` functions;
 //! - [`uri`]: `fmuResourceLocation` parsing.
 pub mod api;
@@ -21,6 +23,8 @@ pub mod fmu_state;
 pub mod instance;
 pub mod interface;
 pub mod logging;
+pub mod state_check;
+pub mod state_registry;
 pub mod types;
 pub mod uri;
 pub mod values;

@@ -1,0 +1,136 @@
+//! Field checks of a deserialized FMU state: a state that passed its checksum can still be
+//! crafted (or written by a buggy tool), so every number is checked to be finite and every size
+//! to fit the instance before the state is handed out. The parameters go through the same
+//! validation as `fmi2SetReal`.
+use super::fmu_state::StateData;
+use crate::scene::{ParamValues, Scene};
+use crate::simulation::Snapshot;
+
+/// Degrees of freedom per node in the snapshot's vectors (u1, u2, w; `model::rod::Rod::dofs`).
+const DOFS_PER_NODE: usize = 3;
+
+/// The scene's parameters from the serialized list: each of the scene's parameters exactly once,
+/// in order, each within its range.
+pub fn params(scene: &Scene, list: &[(String, f64)]) -> Result<ParamValues, String> {
+    let expected: Vec<&str> = scene.params.iter().map(|p| p.name.as_str()).collect();
+    let names: Vec<&str> = list.iter().map(|(n, _)| n.as_str()).collect();
+    if names != expected {
+        return Err(format!(
+            "corrupt serialized state: parameters {names:?}, the {} scene has {expected:?}",
+            scene.name
+        ));
+    }
+    let mut params = scene.defaults();
+    for (name, value) in list {
+        scene
+            .set(&mut params, name, *value)
+            .map_err(|e| format!("in the serialized state: {e}"))?;
+    }
+    Ok(params)
+}
+
+fn finite(what: &str, x: f64) -> Result<(), String> {
+    if x.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("{what} = {x} is not finite"))
+    }
+}
+
+fn all_finite(what: &str, v: &[f64]) -> Result<(), String> {
+    match v.iter().position(|x| !x.is_finite()) {
+        Some(i) => Err(format!("{what} {i} = {} is not finite", v[i])),
+        None => Ok(()),
+    }
+}
+
+/// Every field of `data` that the parameter validation does not already cover.
+pub fn fields(data: &StateData, scene: &Scene) -> Result<(), String> {
+    let e = &data.experiment;
+    finite("startTime", e.start_time)?;
+    if let Some(tol) = e.tolerance {
+        if !(tol.is_finite() && tol > 0.0) {
+            return Err(format!("tolerance = {tol} must be finite and > 0"));
+        }
+    }
+    if let Some(stop) = e.stop_time {
+        if !(stop.is_finite() && stop >= e.start_time) {
+            return Err(format!(
+                "stopTime = {stop} must be finite and >= startTime = {}",
+                e.start_time
+            ));
+        }
+    }
+    if data.inputs.len() != scene.inputs.len() {
+        return Err(format!(
+            "{} inputs, the scene has {}",
+            data.inputs.len(),
+            scene.inputs.len()
+        ));
+    }
+    for (input, value) in scene.inputs.iter().zip(&data.inputs) {
+        if let Some(x) = value {
+            finite(&input.name, *x)?;
+        }
+    }
+    match &data.snapshot {
+        Some(s) => snapshot(s, scene, data.params.elements()),
+        None => Ok(()),
+    }
+}
+
+fn snapshot(s: &Snapshot, scene: &Scene, elements: usize) -> Result<(), String> {
+    if s.scene != scene.name || s.elements != elements {
+        return Err(format!(
+            "the simulation snapshot is of a {} with {} elements, the header says {} with \
+             {elements}",
+            s.scene, s.elements, scene.name
+        ));
+    }
+    let dofs = DOFS_PER_NODE * (elements + 1);
+    if s.displacements.len() != dofs || s.velocities.len() != dofs {
+        return Err(format!(
+            "snapshot vectors of length {} and {}, {elements} elements need {dofs}",
+            s.displacements.len(),
+            s.velocities.len()
+        ));
+    }
+    let sizes = [
+        ("parameter values", s.values.len(), scene.params.len()),
+        ("inputs", s.inputs.len(), scene.inputs.len()),
+        ("reactions", s.reactions.len(), scene.supports.len()),
+    ];
+    for (what, got, want) in sizes {
+        if got != want {
+            return Err(format!("snapshot {what}: {got}, the scene has {want}"));
+        }
+    }
+    finite("snapshot time", s.time)?;
+    finite("clock origin", s.clock.origin)?;
+    finite("clock step", s.clock.step)?;
+    finite("clock time", s.clock.now())?;
+    if s.time != s.clock.now() {
+        return Err(format!(
+            "snapshot time {} disagrees with its clock ({})",
+            s.time,
+            s.clock.now()
+        ));
+    }
+    let e = &s.energy;
+    let ledger = [
+        ("external work", e.external_work),
+        ("input work", e.input_work),
+        ("support work", e.support_work),
+        ("dissipated energy", e.dissipated),
+        ("initial energy", e.initial_energy),
+    ];
+    for (what, x) in ledger {
+        finite(what, x)?;
+    }
+    all_finite("displacement", &s.displacements)?;
+    all_finite("velocity", &s.velocities)?;
+    all_finite("parameter value", &s.values)?;
+    all_finite("input", &s.inputs)?;
+    let reactions: Vec<f64> = s.reactions.iter().flatten().copied().collect();
+    all_finite("reaction", &reactions)
+}
