@@ -21,6 +21,8 @@ from pathlib import Path
 import fmpy
 from fmpy.fmi2 import FMU2Slave
 
+from georod_tools.argtypes import positive_float, positive_int
+
 REPO = Path(__file__).resolve().parents[1]
 FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
 CLI = REPO / "target" / "release" / "georod"
@@ -80,9 +82,9 @@ def time_core(steps: int, dt: float) -> float | None:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[1])
-    ap.add_argument("--steps", type=int, default=10_000)
-    ap.add_argument("--dt", type=float, default=1e-5)
-    ap.add_argument("--repeat", type=int, default=3, help="best of N runs")
+    ap.add_argument("--steps", type=positive_int, default=10_000, help="doStep calls, >= 1 (10000)")
+    ap.add_argument("--dt", type=positive_float, default=1e-5, help="step in s, > 0 (1e-5)")
+    ap.add_argument("--repeat", type=positive_int, default=3, help="best of N runs, >= 1 (3)")
     args = ap.parse_args()
     if not FMU.exists():
         print(f"{FMU} missing: run scripts/build_fmus", file=sys.stderr)

@@ -1,6 +1,6 @@
 """The deformed rod over time, from an FMU's shape outputs (``shape_x[i]``, ``shape_y[i]``).
 
-    python -m georod_tools animate FMU [--set NAME=VALUE]... [--stop T] [--step H]
+    python -m georod_tools animate FMU [--start-values NAME=VALUE ...] [--stop T] [--step H]
                                        [--frames N] [--fps N] [-o out/animate/NAME.gif]
 
 Runs the FMU through fmpy from its initial state (communication step ``--step``, default: the
@@ -166,15 +166,16 @@ def render(motion: Motion, out: Path, fps: int) -> Path:
     return out
 
 
-def parser() -> argparse.ArgumentParser:
-    p = argparse.ArgumentParser(
-        prog="python -m georod_tools animate",
-        description="Animate the deformed rod of an FMU from its shape outputs (GIF).",
-    )
+DESCRIPTION = "Animate the deformed rod of an FMU from its shape outputs (GIF)."
+
+
+def add_options(p: argparse.ArgumentParser) -> None:
+    """The options of the animate command (also a subcommand of ``python -m georod_tools``)."""
     p.add_argument("fmu", type=Path, help="the FMU (its scene needs a [shape] table)")
     p.add_argument(
-        "--set", type=_name_value, action="append", default=[], metavar="NAME=VALUE",
-        help="start value of a parameter or input (repeatable)",
+        "--start-values", "--set", dest="set", type=_name_value, nargs="+", action="extend",
+        default=[], metavar="NAME=VALUE",
+        help="start values of parameters or inputs (e.g. F=1.5 f_ctrl=0.01)",
     )
     p.add_argument("--stop", type=_positive(float), help="end time (default: the FMU's)")
     p.add_argument("--step", type=_positive(float), help="communication step (default: the FMU's)")
@@ -182,11 +183,21 @@ def parser() -> argparse.ArgumentParser:
     p.add_argument("--fps", type=_positive(int), default=25, help="frames per second (25)")
     p.add_argument("-o", "--out", type=Path, help="GIF to write (out/animate/<name>.gif)")
     p.add_argument("--overwrite", action="store_true", help="replace an existing file")
-    return p
+
+
+def add_animate_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("animate", help=DESCRIPTION, description=DESCRIPTION)
+    add_options(p)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    args = parser().parse_args(argv)
+    p = argparse.ArgumentParser(prog="python -m georod_tools animate", description=DESCRIPTION)
+    add_options(p)
+    return run(p.parse_args(argv), argv)
+
+
+def run(args: argparse.Namespace, argv: Sequence[str] | None = None) -> int:
+    """Runs the command for parsed arguments; returns the exit status."""
     if not args.fmu.is_file():
         print(f"animate: {args.fmu} not found (build it with scripts/build_fmus)", file=sys.stderr)
         return 2

@@ -480,9 +480,15 @@ def study(out: Path, figures: Path, quick: bool = False) -> None:
 
 def _name_value(text: str) -> tuple[str, float]:
     name, sep, value = text.partition("=")
-    if not sep:
+    if not sep or not name:
         raise ValueError(f"--set takes NAME=VALUE, got {text!r}")
-    return name, float(value)
+    try:
+        x = float(value)
+    except ValueError:
+        raise ValueError(f"--set {name}: {value!r} is not a number") from None
+    if not math.isfinite(x):
+        raise ValueError(f"--set {name}={value}: must be a finite number")
+    return name, x
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -491,7 +497,12 @@ def main(argv: list[str] | None = None) -> int:
     load-displacement diagram of one scene (CSV and PNG)."""
     import argparse
 
-    ap = argparse.ArgumentParser(description="Shallow arches: static diagrams and the study")
+    from georod_tools.argtypes import positive_float
+
+    ap = argparse.ArgumentParser(
+        prog="python -m georod_tools.arches",
+        description="Shallow arches: static diagrams and the study",
+    )
     sub = ap.add_subparsers(dest="command")
     st = sub.add_parser("static", help="load-displacement diagram of one scene (CSV and PNG)")
     st.add_argument("--scene", choices=["PinnedArch", "ClampedArch"], default="PinnedArch")
@@ -502,16 +513,16 @@ def main(argv: list[str] | None = None) -> int:
         metavar="NAME=VALUE",
         help="an FMU parameter of the scene, e.g. H=1.5 or elements=20",
     )
-    st.add_argument("--max-load", type=float, default=60.0, help="largest |crown load| (60)")
+    st.add_argument(
+        "--max-load", type=positive_float, default=60.0, help="largest |crown load|, > 0 (60)"
+    )
     st.add_argument("--out", default=str(REPO / "out" / "arches"), help="output folder")
     for p in (ap, sub.add_parser("study", help="the whole study (default)")):
-        p.add_argument("--out", default=str(REPO / "out" / "arches"))
-        p.add_argument("--figures", default=str(REPO / "docs" / "figures"))
-        p.add_argument("--quick", action="store_true")
+        p.add_argument("--out", default=str(REPO / "out" / "arches"), help="output folder")
+        p.add_argument("--figures", default=str(REPO / "docs" / "figures"), help="PNG folder")
+        p.add_argument("--quick", action="store_true", help="short smoke-test runs")
     a = ap.parse_args(argv)
     if a.command == "static":
-        if not (math.isfinite(a.max_load) and a.max_load > 0):
-            ap.error(f"--max-load must be finite and > 0, got {a.max_load}")
         try:
             overrides = dict(_name_value(t) for t in a.set)
         except ValueError as e:

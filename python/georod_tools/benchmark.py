@@ -1174,6 +1174,11 @@ def run_benchmark(
 
 def add_benchmark_parser(sub: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p = sub.add_parser("benchmark", help="work-precision benchmark, FMU vs Exudyn, scaling")
+    add_benchmark_options(p)
+
+
+def add_benchmark_options(p: argparse.ArgumentParser) -> None:
+    """The options of ``benchmark`` (subcommand and ``python -m georod_tools.benchmark``)."""
     p.add_argument("--quick", action="store_true", help="smoke-test sizes (seconds)")
     p.add_argument("--no-exudyn", action="store_true", help="skip the Exudyn runs")
     p.add_argument("--fmu", type=Path, help="BuckledBeam FMU (default target/fmu/BuckledBeam.fmu)")
@@ -1207,3 +1212,17 @@ def run_benchmark_command(parser: argparse.ArgumentParser, args: argparse.Namesp
     for f in rep.files:
         print(f"wrote {f}")
     return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m georod_tools.benchmark``: the same as ``python -m georod_tools benchmark``."""
+    ap = argparse.ArgumentParser(
+        prog="python -m georod_tools.benchmark",
+        description="Work-precision benchmark of the BuckledBeam FMU, side by side with Exudyn.",
+    )
+    add_benchmark_options(ap)
+    return run_benchmark_command(ap, ap.parse_args(argv))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -5,8 +5,11 @@
 
 `case` writes a three-panel PNG (Poincaré section, phase portrait, displacement-time diagram) and
 the samples as CSV and prints the classification; `sweep` writes the bifurcation diagram with the
-Lyapunov exponent beneath (PNG) and two CSV files. Bad arguments are refused with their allowed
-range (exit status 2); a failing simulation exits with status 1 and the FMU's message.
+Lyapunov exponent beneath (PNG) and two CSV files, case by case, resumable
+(:mod:`georod_tools.sweep_command`). Each output folder gets a ``run.json``
+(:mod:`georod_tools.records`); an existing non-empty one is refused unless ``--resume`` (sweep)
+or ``--overwrite``. Bad arguments are refused with their allowed range (exit status 2); a failing
+simulation exits with status 1 and the FMU's message.
 """
 
 from __future__ import annotations
@@ -14,17 +17,26 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-import time
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from georod_tools.argtypes import (
+    finite_float,
+    float_range,
+    int_range,
+    nonnegative_int,
+    positive_float,
+    positive_int,
+)
 from georod_tools.classify import ClassifySettings
 
 if TYPE_CHECKING:
     from georod_tools.runner import CaseConfig
 
 DEFAULT_OUT = Path("out") / "chaos"
+#: Largest mesh and sweep size accepted on the command line.
+MAX_ELEMENTS = MAX_COUNT = 100_000
 
 
 def _default_fmu(scene: str) -> Path:
@@ -41,9 +53,12 @@ def _name_value(text: str) -> tuple[str, float]:
     if not sep or not name:
         raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
     try:
-        return name.strip(), float(value)
+        x = float(value)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{name}: {value!r} is not a number") from None
+    if not math.isfinite(x):
+        raise argparse.ArgumentTypeError(f"{name}={value}: must be a finite number")
+    return name.strip(), x
 
 
 def _add_case_options(p: argparse.ArgumentParser, sweep: bool) -> None:
@@ -52,10 +67,23 @@ def _add_case_options(p: argparse.ArgumentParser, sweep: bool) -> None:
     g.add_argument(
         "--scene", default="BuckledBeam", help="scene of scenes/ when no --fmu (BuckledBeam)"
     )
-    g.add_argument("--F", type=float, help="forcing amplitude (default: the FMU's start value)")
-    g.add_argument("--Omega", type=float, help="forcing frequency in rad/s, > 0 (default: FMU's)")
-    g.add_argument("--elements", type=int, default=10, help="finite elements, >= 2 (10)")
-    g.add_argument("--dt-max", type=float, default=1e-5, help="largest internal step, > 0 (1e-5)")
+    g.add_argument(
+        "--F", type=finite_float, help="forcing amplitude, finite (default: the FMU's start value)"
+    )
+    g.add_argument(
+        "--Omega",
+        type=float_range(0.0, unit="rad/s"),
+        help="forcing frequency in rad/s, > 0 (default: the FMU's start value)",
+    )
+    g.add_argument(
+        "--elements",
+        type=int_range(2, MAX_ELEMENTS),
+        default=10,
+        help=f"finite elements, 2..{MAX_ELEMENTS} (10)",
+    )
+    g.add_argument(
+        "--dt-max", type=positive_float, default=1e-5, help="largest internal step in s, > 0 (1e-5)"
+    )
     g.add_argument(
         "--set",
         type=_name_value,
@@ -65,122 +93,152 @@ def _add_case_options(p: argparse.ArgumentParser, sweep: bool) -> None:
         help="any other FMU parameter (repeatable), e.g. --set well=-1",
     )
     g = p.add_argument_group("run")
-    g.add_argument("--transient", type=int, default=200, help="periods discarded, >= 0 (200)")
-    g.add_argument("--periods", type=int, default=200, help="periods sampled, >= 1 (200)")
+    g.add_argument(
+        "--transient", type=nonnegative_int, default=200, help="periods discarded, >= 0 (200)"
+    )
+    g.add_argument("--periods", type=positive_int, default=200, help="periods sampled, >= 1 (200)")
     g.add_argument(
         "--per-period",
-        type=int,
+        type=positive_int,
         default=20 if sweep else 40,
         help=f"communication steps per forcing period, >= 1 ({20 if sweep else 40})",
     )
     if not sweep:
         g.add_argument(
             "--dense-periods",
-            type=int,
+            type=nonnegative_int,
             default=20,
-            help="last sampled periods kept for the phase portrait and time plot (20)",
+            help="last sampled periods kept for the phase portrait and time plot, "
+            "0..--periods (20)",
         )
     g = p.add_argument_group("analysis")
     g.add_argument("--no-lyapunov", action="store_true", help="skip the Lyapunov exponent")
-    g.add_argument("--renorm-every", type=int, default=1, help="periods between renormalizations")
-    g.add_argument("--d0", type=float, default=1e-7, help="Lyapunov separation, > 0 (1e-7)")
-    g.add_argument("--discard", type=int, default=10, help="Lyapunov intervals not averaged (10)")
+    g.add_argument(
+        "--renorm-every", type=positive_int, default=1, help="periods between renormalizations (1)"
+    )
+    g.add_argument(
+        "--d0", type=positive_float, default=1e-7, help="Lyapunov separation, > 0 (1e-7)"
+    )
+    g.add_argument(
+        "--discard", type=nonnegative_int, default=10, help="Lyapunov intervals not averaged (10)"
+    )
     d = ClassifySettings()
-    g.add_argument("--k-max", type=int, default=d.k_max, help=f"largest period ({d.k_max})")
+    g.add_argument(
+        "--k-max", type=positive_int, default=d.k_max, help=f"largest period, >= 1 ({d.k_max})"
+    )
     g.add_argument(
         "--period-tol",
-        type=float,
+        type=float_range(0.0, 1.0),
         default=d.period_tol,
         help=f"period tolerance relative to the attractor size, in (0, 1) ({d.period_tol})",
     )
     g.add_argument(
         "--chaos-threshold",
-        type=float,
+        type=positive_float,
         default=d.chaos_threshold,
         help=f"exponent per period above which a motion is chaotic, > 0 ({d.chaos_threshold})",
     )
-    p.add_argument("--out", type=Path, default=DEFAULT_OUT, help=f"output folder ({DEFAULT_OUT})")
+    g = p.add_argument_group("output")
+    g.add_argument(
+        "--out",
+        type=Path,
+        help=f"output folder (default: a new {DEFAULT_OUT}/{'sweep_<param>' if sweep else 'case'}"
+        "_<timestamp>); an existing non-empty folder is refused unless "
+        + ("--resume or " if sweep else "")
+        + "--overwrite",
+    )
+    if sweep:
+        g.add_argument(
+            "--resume",
+            action="store_true",
+            help="continue the sweep recorded in --out (same settings): finished cases are kept",
+        )
+    g.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="empty --out first (only a folder written by georod_tools, with a run.json)",
+    )
 
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="georod-chaos",
-        description="Chaos analyses of the georod FMUs: Poincaré sections, phase portraits, "
-        "bifurcation diagrams, Lyapunov exponents.",
+        description="Analyses of the georod FMUs: Poincaré sections, phase portraits, "
+        "bifurcation diagrams, Lyapunov exponents, studies, animations.",
     )
     sub = parser.add_subparsers(dest="command", required=True)
     pc = sub.add_parser("case", help="one run: section, phase portrait, time plot, exponent")
     _add_case_options(pc, sweep=False)
+    pc.set_defaults(_parser=pc)  # errors show the subcommand's usage
     ps = sub.add_parser("sweep", help="bifurcation diagram over F or Omega (Dask)")
     ps.add_argument("--param", default="F", help="parameter swept: F, Omega or any FMU Real (F)")
-    ps.add_argument("--start", type=float, required=True, help="first value")
-    ps.add_argument("--stop", type=float, required=True, help="last value")
-    ps.add_argument("--count", type=int, default=50, help="number of values, 1..100000 (50)")
-    ps.add_argument("--workers", type=int, default=2, help="local worker processes, >= 1 (2)")
-    ps.add_argument("--scheduler", help="address of a running Dask scheduler (no local cluster)")
+    ps.add_argument("--start", type=finite_float, required=True, help="first value, finite")
+    ps.add_argument("--stop", type=finite_float, required=True, help="last value, finite")
+    ps.add_argument(
+        "--count",
+        type=int_range(1, MAX_COUNT),
+        default=50,
+        help=f"number of values, 1..{MAX_COUNT} (50)",
+    )
+    ps.add_argument(
+        "--workers", type=positive_int, default=2, help="local worker processes, >= 1 (2)"
+    )
+    ps.add_argument(
+        "--scheduler",
+        metavar="ADDR",
+        help="address of a running Dask scheduler, e.g. tcp://host:8786 (no local cluster); "
+        "its workers need georod_tools, not the FMU file: the FMU is sent to them",
+    )
     ps.add_argument("--no-progress", action="store_true", help="no progress bar")
     _add_case_options(ps, sweep=True)
+    ps.set_defaults(_parser=ps)
     from georod_tools.study import add_study_parser
 
     add_study_parser(sub)
     from georod_tools.benchmark import add_benchmark_parser
 
     add_benchmark_parser(sub)
+    from georod_tools.animate import add_animate_parser
+
+    add_animate_parser(sub)
     return parser
 
 
 def _check(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
-    """Range checks that argparse types cannot express; exits with status 2 and the range."""
+    """Checks across options (single values are checked by their argparse types); exits with
+    status 2 and the allowed range."""
 
     def need(ok: bool, msg: str) -> None:
         if not ok:
             parser.error(msg)
 
-    def finite(x: float | None) -> bool:
-        return x is None or math.isfinite(x)
-
-    need(finite(args.F), f"--F {args.F}: must be a finite number")
-    need(
-        args.Omega is None or (finite(args.Omega) and args.Omega > 0),
-        f"--Omega {args.Omega}: must be > 0 (rad/s)",
-    )
-    need(2 <= args.elements <= 100000, f"--elements {args.elements}: allowed range 2..100000")
-    need(finite(args.dt_max) and args.dt_max > 0, f"--dt-max {args.dt_max}: must be > 0")
-    need(args.transient >= 0, f"--transient {args.transient}: must be >= 0")
-    need(args.periods >= 1, f"--periods {args.periods}: must be >= 1")
-    need(args.per_period >= 1, f"--per-period {args.per_period}: must be >= 1")
-    need(args.renorm_every >= 1, f"--renorm-every {args.renorm_every}: must be >= 1")
-    need(finite(args.d0) and args.d0 > 0, f"--d0 {args.d0}: must be > 0")
-    need(args.discard >= 0, f"--discard {args.discard}: must be >= 0")
     if not args.no_lyapunov:
         need(
             args.periods // args.renorm_every > args.discard,
             f"--periods {args.periods} must exceed --discard {args.discard} times "
             f"--renorm-every {args.renorm_every} (at least one averaged Lyapunov interval)",
         )
-    need(args.k_max >= 1, f"--k-max {args.k_max}: must be >= 1")
-    need(0 < args.period_tol < 1, f"--period-tol {args.period_tol}: allowed range (0, 1)")
-    need(args.chaos_threshold > 0, f"--chaos-threshold {args.chaos_threshold}: must be > 0")
-    for name, value in args.set:
-        need(math.isfinite(value), f"--set {name}={value}: must be finite")
+    for name, _ in args.set:
         need(
             name not in ("F", "Omega", "elements", "dt_max"),
             f"--set {name}: use --{name.replace('_', '-')} instead",
         )
     if args.command == "case":
         need(
-            0 <= args.dense_periods <= args.periods,
+            args.dense_periods <= args.periods,
             f"--dense-periods {args.dense_periods}: allowed range 0..--periods ({args.periods})",
         )
     else:
-        need(1 <= args.count <= 100000, f"--count {args.count}: allowed range 1..100000")
-        need(args.workers >= 1, f"--workers {args.workers}: must be >= 1")
-        need(finite(args.start) and finite(args.stop), "--start/--stop must be finite")
         need(args.param not in ("elements",), "--param elements: sweep a Real parameter")
         if args.param == "Omega":
             need(
                 args.start > 0 and args.stop > 0,
                 f"--param Omega: --start {args.start} and --stop {args.stop} must be > 0",
+            )
+        if args.param == "dt_max":
+            need(
+                args.start > 0 and args.stop > 0,
+                f"--param dt_max: --start {args.start} and --stop {args.stop} must be > 0",
             )
     if args.fmu is not None:
         need(args.fmu.is_file(), f"--fmu {args.fmu}: no such file (build with scripts/build_fmus)")
@@ -250,17 +308,50 @@ def _fmt(x: float) -> str:
     return f"{x:g}".replace("+", "")
 
 
-def run_case_command(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
+def run_case_command(
+    parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequence[str]
+) -> int:
     from georod_tools.plots import plot_case, write_case_csv, write_dense_csv
-    from georod_tools.runner import run_case
+    from georod_tools.records import (
+        OutputRefusedError,
+        RunRecord,
+        fmu_info,
+        fresh_folder,
+        jsonable,
+        options,
+        prepare_output,
+    )
+    from georod_tools.runner import FmuModel, run_case
 
     cfg = _base_config(parser, args)
-    result = run_case(cfg)
+    out = args.out if args.out is not None else fresh_folder(DEFAULT_OUT, "case")
+    try:
+        prepare_output(out, overwrite=args.overwrite)
+    except OutputRefusedError as e:
+        parser.error(str(e))
+    model = FmuModel.load(cfg.fmu)
+    settings = jsonable(cfg)
+    settings.pop("fmu")
+    record = RunRecord.create(
+        out, "case", settings, fmu_info(cfg.fmu, model.md.guid, model.identifier)
+    )
+    record.start_session(argv, options(args))
+    try:
+        result = run_case(cfg)
+    except Exception as e:
+        record.finish("failed", error=f"{type(e).__name__}: {e}")
+        raise
     stem = f"{Path(cfg.fmu).stem}_F{_fmt(cfg.F)}_Omega{_fmt(cfg.Omega)}"
-    png = plot_case(result, args.out / f"{stem}.png")
-    csv_path = write_case_csv(result, args.out / f"{stem}_samples.csv")
-    dense = write_dense_csv(result, args.out / f"{stem}_dense.csv")
+    png = plot_case(result, out / f"{stem}.png")
+    csv_path = write_case_csv(result, out / f"{stem}_samples.csv")
+    dense = write_dense_csv(result, out / f"{stem}_dense.csv")
     c = result.classification
+    written = [p for p in (png, csv_path, dense) if p is not None]
+    record.finish(
+        "complete",
+        result={"class": c.label, "lyapunov_per_period": result.exponent_per_period},
+        outputs=[p.name for p in written],
+    )
     print(
         f"{Path(cfg.fmu).stem}: F = {cfg.F:g}, Omega = {cfg.Omega:g}, "
         f"{cfg.elements} elements, {cfg.transient_periods} + {cfg.sample_periods} periods"
@@ -273,53 +364,14 @@ def run_case_command(parser: argparse.ArgumentParser, args: argparse.Namespace) 
             f"= {ly.per_second:.2f} 1/s"
         )
     print(f"run time: {result.wall_time:.2f} s")
-    for p in (png, csv_path, dense):
-        if p is not None:
-            print(f"wrote {p}")
-    return 0
-
-
-def run_sweep_command(parser: argparse.ArgumentParser, args: argparse.Namespace) -> int:
-    from georod_tools.plots import plot_sweep, write_sweep_csv
-    from georod_tools.sweep import run_sweep, sweep_values
-
-    base = _base_config(parser, args)
-    values = sweep_values(args.start, args.stop, args.count)
-    t0 = time.perf_counter()
-    results = run_sweep(
-        base,
-        args.param,
-        values,
-        workers=args.workers,
-        scheduler=args.scheduler,
-        progress=not args.no_progress,
-    )
-    wall = time.perf_counter() - t0
-    stem = (
-        f"{Path(base.fmu).stem}_sweep_{args.param}_{_fmt(args.start)}_{_fmt(args.stop)}"
-        f"_{args.count}"
-    )
-    png = plot_sweep(
-        args.param,
-        results,
-        args.out / f"{stem}.png",
-        chaos_threshold=None if args.no_lyapunov else args.chaos_threshold,
-    )
-    summary, samples = write_sweep_csv(args.param, results, args.out / f"{stem}.csv")
-    kinds: dict[str, int] = {}
-    for r in results:
-        kinds[r.classification.label] = kinds.get(r.classification.label, 0) + 1
-    print(
-        f"{len(results)} cases in {wall:.1f} s: "
-        + ", ".join(f"{k}: {n}" for k, n in sorted(kinds.items()))
-    )
-    for p in (png, summary, samples):
+    for p in (*written, record.path):
         print(f"wrote {p}")
     return 0
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
+    argv = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command == "study":
@@ -330,11 +382,18 @@ def main(argv: Sequence[str] | None = None) -> int:
         from georod_tools.benchmark import run_benchmark_command
 
         return run_benchmark_command(parser, args)
-    _check(parser, args)
+    if args.command == "animate":
+        from georod_tools import animate
+
+        return animate.run(args, argv)
+    sub = args._parser
+    _check(sub, args)
     try:
         if args.command == "case":
-            return run_case_command(parser, args)
-        return run_sweep_command(parser, args)
+            return run_case_command(sub, args, argv)
+        from georod_tools.sweep_command import run_sweep_command
+
+        return run_sweep_command(sub, args, _base_config(sub, args), argv)
     except (RuntimeError, ValueError, OSError) as e:
         print(f"georod-chaos: error: {e}", file=sys.stderr)
         return 1

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from georod_tools import fmu_path
+from georod_tools.argtypes import int_range, nonnegative_int
 
 #: The two sections of the demo: (F, Omega, what the paper shows there).
 SECTION_CASES: tuple[tuple[float, float, str], ...] = (
@@ -135,8 +136,10 @@ def run_demo(out: Path, transient: int = 150, periods: int = 150, fmu: Path | No
 def main(argv: Sequence[str] | None = None) -> int:
     p = argparse.ArgumentParser(prog="python -m georod_tools.demo", description=__doc__)
     p.add_argument("--out", type=Path, default=Path("out"), help="output folder (out)")
-    p.add_argument("--transient", type=int, default=150, help="transient periods (150)")
-    p.add_argument("--periods", type=int, default=150, help="sampled periods, >= 2 (150)")
+    p.add_argument(
+        "--transient", type=nonnegative_int, default=150, help="transient periods, >= 0 (150)"
+    )
+    p.add_argument("--periods", type=int_range(2), default=150, help="sampled periods, >= 2 (150)")
     p.add_argument("--fmu", type=Path, help="BuckledBeam FMU (target/fmu/BuckledBeam.fmu)")
     a = p.parse_args(argv)
     if a.transient < 0 or a.periods < 2:

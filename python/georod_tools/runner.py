@@ -43,8 +43,20 @@ OUTPUT_NAMES = ("w_mid", "v_mid")
 T = TypeVar("T")
 
 
+#: fmi2Status names by value.
+FMI2_STATUS = ("fmi2OK", "fmi2Warning", "fmi2Discard", "fmi2Error", "fmi2Fatal", "fmi2Pending")
+
+
 class FmuError(RuntimeError):
-    """An FMI call failed; the message carries what the FMU logged."""
+    """An FMI call failed; the message carries the returned status and what the FMU logged.
+
+    status: the fmi2Status the call returned (2 = fmi2Discard, 3 = fmi2Error, ...), or None when
+    the failure was not a status (e.g. the library could not be loaded).
+    """
+
+    def __init__(self, message: str, status: int | None = None) -> None:
+        super().__init__(message)
+        self.status = status
 
 
 class FmuModel:
@@ -169,7 +181,11 @@ class Instance:
         try:
             return fn()
         except Exception as e:  # fmpy raises a plain Exception / FMICallException on status > OK
-            raise FmuError(f"{what or e}: {self.log.last()}") from e
+            status = getattr(e, "status", None)
+            returned = ""
+            if what and isinstance(status, int) and 0 <= status < len(FMI2_STATUS):
+                returned = f" returned {FMI2_STATUS[status]}"
+            raise FmuError(f"{what or e}{returned}: {self.log.last()}", status) from e
 
     def _set(self, name: str, value: float) -> None:
         m = self.model

@@ -21,6 +21,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from georod_tools.argtypes import positive_int
 from georod_tools.runner import FmuError, FmuModel, Instance
 
 ENERGY_OUTPUTS = ("E_kin", "E_strain", "energy_error", "w_mid")
@@ -211,14 +212,24 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     sub = ap.add_subparsers(dest="cmd", required=True)
     f = sub.add_parser("fmu", help="FMU energy runs, integrator 1 vs 2 -> CSV")
-    f.add_argument("--fmu-dir", type=Path, default=Path("target/fmu"))
-    f.add_argument("--out", type=Path, required=True)
-    f.add_argument("--steps", type=int, default=100_000)
-    f.add_argument("--every", type=int, default=20)
-    f.add_argument("--cases", nargs="*", default=[c.name for c in CASES])
+    f.add_argument(
+        "--fmu-dir", type=Path, default=Path("target/fmu"), help="folder of the FMUs (target/fmu)"
+    )
+    f.add_argument("--out", type=Path, required=True, help="CSV folder")
+    f.add_argument(
+        "--steps",
+        type=positive_int,
+        default=100_000,
+        help="free-vibration communication steps, >= 1 (100000)",
+    )
+    f.add_argument(
+        "--every", type=positive_int, default=20, help="steps between CSV rows, >= 1 (20)"
+    )
+    names = [c.name for c in CASES]
+    f.add_argument("--cases", nargs="*", choices=names, default=names, help="cases to run (all)")
     p = sub.add_parser("plot", help="CSV pairs -> PNG")
-    p.add_argument("--csv", type=Path, required=True)
-    p.add_argument("--out", type=Path, required=True)
+    p.add_argument("--csv", type=Path, required=True, help="folder of the CSV pairs")
+    p.add_argument("--out", type=Path, required=True, help="PNG folder")
     args = ap.parse_args(argv)
     if args.cmd == "fmu":
         for case in (c for c in CASES if c.name in args.cases):

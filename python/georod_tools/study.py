@@ -34,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
+from georod_tools.argtypes import positive_int
 from georod_tools.runner import CaseConfig, CaseResult, FmuModel, Instance
 from georod_tools.sweep import run_sweep, sweep_values
 
@@ -901,14 +902,21 @@ def _speedups(rows: list[dict[str, object]]) -> None:
 def add_study_parser(sub: argparse._SubParsersAction) -> None:
     """The ``study`` subcommand (registered by :mod:`georod_tools.cli`)."""
     p = sub.add_parser("study", help="reproduce the paper's section 6.1 (figures, tables, checks)")
+    add_study_options(p)
+
+
+def add_study_options(p: argparse.ArgumentParser) -> None:
+    """The options of ``study`` (subcommand and ``python -m georod_tools.study``)."""
     p.add_argument("--quick", action="store_true", help="short runs, few bifurcation values")
-    p.add_argument("--workers", type=int, default=2, help="local Dask worker processes (2)")
+    p.add_argument(
+        "--workers", type=positive_int, default=2, help="local Dask worker processes, >= 1 (2)"
+    )
     p.add_argument("--out", type=Path, default=Path("out") / "study", help="output folder")
     p.add_argument("--fmu", type=Path, help="BuckledBeam FMU (default: target/fmu/BuckledBeam.fmu)")
     p.add_argument("--no-convergence", action="store_true", help="skip the checks of differences")
     p.add_argument("--no-progress", action="store_true", help="no progress bars")
     p.add_argument("--timing", action="store_true", help="only the 1- vs 2-worker timing")
-    p.add_argument("--repeats", type=int, default=1, help="timing repetitions (1)")
+    p.add_argument("--repeats", type=positive_int, default=1, help="timing repetitions, >= 1 (1)")
     p.add_argument(
         "--parts",
         default=",".join(PARTS),
@@ -922,8 +930,6 @@ def run_study_command(parser: argparse.ArgumentParser, args: argparse.Namespace)
     fmu = args.fmu or fmu_path("BuckledBeam")
     if not Path(fmu).is_file():
         parser.error(f"FMU {fmu} not found: build it with scripts/build_fmus or pass --fmu")
-    if args.workers < 1 or args.repeats < 1:
-        parser.error("--workers and --repeats must be >= 1")
     parts = [x.strip() for x in args.parts.split(",") if x.strip()]
     if not parts or any(x not in PARTS for x in parts):
         parser.error(f"--parts {args.parts}: choose from {','.join(PARTS)}")
@@ -943,3 +949,17 @@ def run_study_command(parser: argparse.ArgumentParser, args: argparse.Namespace)
     )
     print(f"study done in {time.perf_counter() - t0:.0f} s; {len(rep.files)} files in {args.out}")
     return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``python -m georod_tools.study``: the same as ``python -m georod_tools study``."""
+    ap = argparse.ArgumentParser(
+        prog="python -m georod_tools.study",
+        description="Reproduction of the paper's section 6.1 with the BuckledBeam FMU.",
+    )
+    add_study_options(ap)
+    return run_study_command(ap, ap.parse_args(argv))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

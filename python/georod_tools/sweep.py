@@ -7,21 +7,44 @@ there were. Results come back sorted by the parameter value.
 
 Runs on a local cluster of `workers` single-threaded worker processes by default (one FMU case
 per process at a time: the FMU is single-threaded and the processes keep the cases apart), or on
-any running scheduler when its address is given (its workers need this package installed).
+any running scheduler when its address is given (its workers need this package installed, not
+the FMU file: the FMU travels to them as bytes, see :mod:`georod_tools.remote`).
+
+A case that fails (the FMU returns fmi2Discard or fmi2Error, a Python exception, a lost worker or
+one that cannot load the FMU) becomes a :class:`~georod_tools.failure.CaseFailure` with its reason;
+:func:`sweep` always finishes and returns results and failures, :func:`run_sweep` (the study's
+entry) raises after the whole sweep when any case failed.
 """
 
 from __future__ import annotations
 
 import logging
+import sys
 from collections.abc import Callable, Sequence
 from contextlib import ExitStack
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
+from georod_tools.failure import FAIL_WORKER, CaseFailure
+from georod_tools.remote import FmuPayload, install, run_on_worker
 from georod_tools.runner import CaseConfig, CaseResult, run_case
+
+__all__ = [
+    "CaseFailure",
+    "SweepOutcome",
+    "case_value",
+    "run_sweep",
+    "sweep",
+    "sweep_configs",
+    "sweep_values",
+]
 
 #: Parameters a sweep may vary by default (any other FMU Real parameter works too).
 SWEEPABLE = ("F", "Omega")
+
+CaseFn = Callable[[CaseConfig], CaseResult]
 
 
 def sweep_values(start: float, stop: float, count: int) -> list[float]:
@@ -39,10 +62,129 @@ def sweep_configs(base: CaseConfig, param: str, values: Sequence[float]) -> list
     return [base.with_value(param, v) for v in values]
 
 
-def _value(cfg: CaseConfig, param: str) -> float:
+def case_value(cfg: CaseConfig, param: str) -> float:
+    """The value of `param` in `cfg`."""
     if param in ("F", "Omega", "dt_max", "elements"):
         return float(getattr(cfg, param))
     return float(dict(cfg.params)[param])
+
+
+@dataclass
+class SweepOutcome:
+    """Results sorted by value, failures sorted by value, and each worker's state (address ->
+    :func:`georod_tools.remote.worker_fmu_status`) when the sweep started."""
+
+    results: list[CaseResult] = field(default_factory=list)
+    failures: list[CaseFailure] = field(default_factory=list)
+    workers: dict[str, dict[str, Any]] = field(default_factory=dict)
+
+
+def _local_cluster(workers: int) -> Any:
+    """`workers` single-threaded processes, each holding one case at a time (worker saturation
+    1: a worker that dies takes only its running case with it)."""
+    import dask
+    from dask.distributed import LocalCluster
+
+    with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):
+        return LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=":0",
+            silence_logs=logging.WARNING,
+        )
+
+
+def sweep(
+    base: CaseConfig,
+    param: str,
+    values: Sequence[float],
+    workers: int = 1,
+    scheduler: str | None = None,
+    progress: bool = True,
+    on_done: Callable[[CaseResult | CaseFailure], None] | None = None,
+    payload: FmuPayload | None = None,
+    case_fn: CaseFn = run_case,
+    progress_total: int | None = None,
+) -> SweepOutcome:
+    """Runs `base` for every value of `param` on Dask; always finishes.
+
+    workers: number of local worker processes (ignored when `scheduler` is given).
+    scheduler: address of a running Dask scheduler (``tcp://host:8786``); None starts a local
+        cluster that is shut down afterwards.
+    on_done: called in this process with each result or failure as it arrives (e.g. to append
+        it to a file).
+    payload: the FMU as bytes (default: read from ``base.fmu``); the workers never read
+        ``base.fmu``, so it need not exist where they run.
+    case_fn: what runs one case on a worker (default :func:`run_case`; must be importable there).
+    progress_total: the progress bar's total when this sweep finishes a larger one (``--resume``).
+    Raises FmuUnavailableError (naming each worker and its reason) when no worker can load the
+    FMU.
+    """
+    from dask.distributed import Client, as_completed
+
+    if workers < 1:
+        raise ValueError(f"workers = {workers} must be >= 1")
+    outcome = SweepOutcome()
+    configs = sweep_configs(base, param, values)
+    if not configs:
+        return outcome
+    payload = payload or FmuPayload.read(base.fmu)
+    with ExitStack() as stack:
+        if scheduler:
+            client = stack.enter_context(Client(scheduler))
+        else:
+            cluster = stack.enter_context(_local_cluster(workers))
+            client = stack.enter_context(Client(cluster))
+        outcome.workers = install(client, payload)
+        good = [a for a, s in outcome.workers.items() if s["fmu_loaded"]]
+        for a, s in sorted(outcome.workers.items()):
+            if not s["fmu_loaded"]:
+                print(
+                    f"warning: worker {a} cannot load {payload.name}: {s['error']}", file=sys.stderr
+                )
+        # workers that failed to load the FMU get no case while a good one is there
+        restrict: dict[str, Any] = {}
+        if len(good) < len(outcome.workers):
+            restrict = {"workers": good, "allow_other_workers": True}
+        vals = [case_value(c, param) for c in configs]
+        futures = client.map(
+            run_on_worker,
+            configs,
+            vals,
+            sha256=payload.sha256,
+            name=payload.name,
+            case_fn=case_fn,
+            pure=False,
+            **restrict,
+        )
+        index = {f.key: i for i, f in enumerate(futures)}
+        bar = None
+        if progress:
+            from tqdm import tqdm
+
+            total = progress_total or len(futures)
+            bar = stack.enter_context(
+                tqdm(total=total, initial=total - len(futures), desc=f"sweep {param}", unit="case")
+            )
+        for fut in as_completed(futures):
+            i = index[fut.key]
+            try:
+                got = fut.result()
+            except Exception as e:  # noqa: BLE001 - worker lost (KilledWorker), cancelled, ...
+                got = CaseFailure(vals[i], FAIL_WORKER, f"{type(e).__name__}: {e}")
+            fut.release()
+            if isinstance(got, CaseFailure):
+                outcome.failures.append(got)
+            else:
+                outcome.results.append(got)
+            if on_done is not None:
+                on_done(got)
+            if bar is not None:
+                bar.update(1)
+    outcome.results.sort(key=lambda r: case_value(r.config, param))
+    outcome.failures.sort(key=lambda f: f.value)
+    return outcome
 
 
 def run_sweep(
@@ -54,54 +196,17 @@ def run_sweep(
     progress: bool = True,
     on_result: Callable[[CaseResult], None] | None = None,
 ) -> list[CaseResult]:
-    """Runs `base` for every value of `param` on Dask and returns the results sorted by value.
+    """:func:`sweep` for callers that need every case: the results sorted by value, or, after
+    the whole sweep ran, RuntimeError listing each failed value and its reason."""
 
-    workers: number of local worker processes (ignored when `scheduler` is given).
-    scheduler: address of a running Dask scheduler (``tcp://host:8786``); None starts a local
-        cluster that is shut down afterwards.
-    progress: show a tqdm bar over the completed cases.
-    A failing case cancels the rest and raises RuntimeError naming its parameter value.
-    """
-    from dask.distributed import Client, LocalCluster, as_completed
+    def done(got: CaseResult | CaseFailure) -> None:
+        if on_result is not None and isinstance(got, CaseResult):
+            on_result(got)
 
-    if workers < 1:
-        raise ValueError(f"workers = {workers} must be >= 1")
-    configs = sweep_configs(base, param, values)
-    if not configs:
-        return []
-    results: list[CaseResult] = []
-    with ExitStack() as stack:
-        if scheduler:
-            client = stack.enter_context(Client(scheduler))
-        else:
-            cluster = stack.enter_context(
-                LocalCluster(
-                    n_workers=workers,
-                    threads_per_worker=1,
-                    processes=True,
-                    dashboard_address=":0",
-                    silence_logs=logging.WARNING,
-                )
-            )
-            client = stack.enter_context(Client(cluster))
-        futures = client.map(run_case, configs, pure=True)
-        index = {f.key: i for i, f in enumerate(futures)}
-        bar = None
-        if progress:
-            from tqdm import tqdm
-
-            bar = stack.enter_context(tqdm(total=len(futures), desc=f"sweep {param}", unit="case"))
-        for fut in as_completed(futures):
-            cfg = configs[index[fut.key]]
-            try:
-                res = fut.result()
-            except Exception as e:
-                client.cancel(futures)
-                raise RuntimeError(f"case {param} = {_value(cfg, param):g} failed: {e}") from e
-            results.append(res)
-            if on_result is not None:
-                on_result(res)
-            if bar is not None:
-                bar.update(1)
-    results.sort(key=lambda r: _value(r.config, param))
-    return results
+    out = sweep(
+        base, param, values, workers=workers, scheduler=scheduler, progress=progress, on_done=done
+    )
+    if out.failures:
+        lines = "; ".join(f"{param} = {f.value:g}: {f.reason}" for f in out.failures)
+        raise RuntimeError(f"{len(out.failures)} of {len(values)} cases failed: {lines}")
+    return out.results

@@ -184,7 +184,7 @@ def test_altered_scene_file_is_refused(examples: dict[str, FmuInfo], tmp_path: P
 def test_animate_writes_a_gif(examples: dict[str, FmuInfo], tmp_path: Path) -> None:
     out = tmp_path / "cantilever.gif"
     cmd = [sys.executable, "-m", "georod_tools.animate", str(examples["Cantilever"].path)]
-    cmd += ["--set", "f_tip=0.005", "--stop", "0.2", "--frames", "8", "-o", str(out)]
+    cmd += ["--start-values", "f_tip=0.005", "--stop", "0.2", "--frames", "8", "-o", str(out)]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     with zipfile.ZipFile(examples["Cantilever"].path) as z:
