@@ -93,8 +93,8 @@ fn ride_the_base(damping: f64, t: &mut Table) -> BaseRun {
             assert_eq!(sim.state().u[3 * node + U2], target[1]);
         }
         for i in 0..rod.nodes() {
-            for c in 0..2 {
-                rigid = rigid.max((sim.state().u[3 * i + c] - target[c]).abs());
+            for (c, g) in target.iter().enumerate() {
+                rigid = rigid.max((sim.state().u[3 * i + c] - g).abs());
             }
         }
     }
