@@ -38,6 +38,7 @@ COMMANDS: list[tuple[str, list[str]]] = [
     ("georod_tools.benchmark", []),
     ("georod_tools.demo", []),
     ("georod_tools.study", []),
+    ("georod_tools.animate", []),
 ]
 
 
