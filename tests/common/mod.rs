@@ -1,10 +1,13 @@
 //! Shared helpers of the physics tests: a deterministic PRNG, dense copies of the block-tridiagonal
 //! matrices, a dense generalized symmetric eigen solver, and closed-form reference solutions
-//! (Timoshenko beam frequencies, the shear-deformable buckling load, the exact elastica).
+//! (Timoshenko beam frequencies, the shear-deformable buckling load, the exact elastica), and
+//! the one adapter to the scene layer used by the newer tests (see [`scene`]).
 #![allow(dead_code)]
 
 use georod::model::rod::{U1, U2};
-use georod::model::{ReferenceCurve, Rod, Section};
+use georod::model::{ExcitationKind, LoadCase, ReferenceCurve, Rod, Section};
+use georod::scene::{SceneKind, SceneParams};
+use georod::simulation::{AdvanceReport, SimError, Simulation};
 use georod::solver::BlockTridiagonal;
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
@@ -310,4 +313,37 @@ impl Drop for Table {
     fn drop(&mut self) {
         println!("{}", self.0);
     }
+}
+
+// ----- the scene layer ------------------------------------------------------------------------
+// The only place where the newer tests (closed_form_*, step_retry) touch `SceneKind`,
+// `SceneParams`, `Simulation::advance` and `LoadCase`: when scenes become data files and inputs
+// are set apart from `advance`, these three functions are what changes.
+
+/// A scene (`"BuckledBeam"`, `"PinnedArch"`, `"ClampedArch"`) with parameters overridden by
+/// name, at its initial static state.
+pub fn scene(name: &str, overrides: &[(&str, f64)]) -> Simulation {
+    let kind = SceneKind::from_name(name).unwrap_or_else(|| panic!("no scene {name}"));
+    let params = SceneParams::with(kind, overrides.iter().copied()).expect("scene parameters");
+    Simulation::new(params).expect("initial static state")
+}
+
+/// One communication step of `h` with the control force `f_ctrl` held.
+pub fn advance(sim: &mut Simulation, h: f64, f_ctrl: f64) -> Result<AdvanceReport, SimError> {
+    sim.advance(h, f_ctrl)
+}
+
+/// The loads of fixed direction along `-e2`: `F cos(Omega t)` per unit length on the whole rod
+/// (`distributed`) or at `s = S/2`, plus a constant point force at `s = S/2`.
+pub fn loads(rod: &Rod, distributed: bool, f: f64, omega: f64, point_force: f64) -> LoadCase {
+    let kind = if distributed {
+        ExcitationKind::Distributed
+    } else {
+        ExcitationKind::Crown
+    };
+    let mut loads = LoadCase::new(rod, kind);
+    loads.amplitude = f;
+    loads.frequency = omega;
+    loads.point_force = point_force;
+    loads
 }
