@@ -1,5 +1,9 @@
 """Issue 5 (docs/arches.md): short arch cases through the FMUs, classified by the chaos tools.
 
+The thresholds on w_mid below (wells at 0 and -3.99, the ring's position and width) are
+regression guards drawn from this code's own runs (docs/arches.md), not independent references;
+the independent statements are the classifications and the torus exponent 0.
+
 - PinnedArch (defaults, 10 elements), F = 20, Omega = 1000 rad/s (~0.8 of the lowest natural
   frequency about z1, 1228 rad/s): the global chaotic attractor of docs/figures/
   arches_chaos_pinned.png; a short run (100 + 100 periods) already measures an exponent of
