@@ -53,6 +53,12 @@ fn release(u: &[f64], v_crown: f64, duration: f64) -> f64 {
     output(&sim, "w_mid")
 }
 
+/// w_mid of z2 and z3 as this code computed them (regression guard, see below).
+const REGRESSION_Z2: f64 = -2.6675217316931263;
+const REGRESSION_Z3: f64 = -3.99334691540843;
+
+/// The stability pattern (z1, z3 stable, z2 unstable; modal and dynamic checks agree) is the
+/// physics checked here; the positions of z2 and z3 are regression guards.
 #[test]
 fn pinned_arch_equilibria_stability_and_return() {
     let (rod, eq) = zero_load_equilibria();
@@ -61,7 +67,12 @@ fn pinned_arch_equilibria_stability_and_return() {
     println!("PinnedArch zero-load equilibria: w_mid = {ws:?}, negative eigenvalues {negative:?}");
     assert_eq!(eq.len(), 3, "expected z1, z2, z3");
     assert!(ws[0].abs() < 1e-12);
-    assert!((ws[1] + 2.67).abs() < 0.05 && (ws[2] + 3.99).abs() < 0.05);
+    // Regression guard, not an independent reference: z2 and z3 are this code's own values
+    // (docs/arches.md, first found in issue 5; no closed form exists for the inverted circular
+    // arch). They pin the static model and the continuation against unintended change: located
+    // by bisection to ~1e-12, so 1e-8 leaves room for round-off only.
+    assert!((ws[1] - REGRESSION_Z2).abs() < 1e-8, "z2 moved: {}", ws[1]);
+    assert!((ws[2] - REGRESSION_Z3).abs() < 1e-8, "z3 moved: {}", ws[2]);
     assert_eq!(negative[0], 0);
     assert!(negative[1] > 0);
     assert_eq!(negative[2], 0);
@@ -82,9 +93,10 @@ fn pinned_arch_equilibria_stability_and_return() {
         let (w0, e) = &eq[k];
         let w = release(&e.u, sign * disturbance, 0.1);
         println!(
-            "  from z{} ({w0:.4}) disturbed by {:+}: w_mid = {w:.6} after 0.1 s",
+            "  from z{} ({w0:.4}) disturbed by {:+}: w_mid = {w:.6} after 0.1 s ({:.1e} off)",
             k + 1,
-            sign * disturbance
+            sign * disturbance,
+            w - w0
         );
         assert!((w - w0).abs() < 1e-4, "z{} did not return: {w}", k + 1);
     }
@@ -92,8 +104,11 @@ fn pinned_arch_equilibria_stability_and_return() {
         let (w0, e) = &eq[1];
         let w = release(&e.u, sign * disturbance, 0.1);
         println!(
-            "  from z2 ({w0:.4}) disturbed by {:+}: w_mid = {w:.6} after 0.1 s",
-            sign * disturbance
+            "  from z2 ({w0:.4}) disturbed by {:+}: w_mid = {w:.6} after 0.1 s ({:.1e} from z1, \
+             {:.1e} from z3)",
+            sign * disturbance,
+            w - ws[0],
+            w - ws[2]
         );
         let near = |z: f64| (w - z).abs() < 1e-3;
         assert!(near(ws[0]) || near(ws[2]), "z2 disturbed ended at {w}");

@@ -1,5 +1,8 @@
 """Session fixtures: the three FMUs (built by scripts/build_fmus when missing or stale), each
-extracted once for the FMU2Slave tests, and the core's CLI for the reference trajectories."""
+extracted once for the FMU2Slave tests, and the core's CLI for the reference trajectories.
+
+No silent skips: a test that needs something absent builds it (the FMUs, the CLI) or fails with
+a message saying what is missing; a skip (pytest.skip, a skip mark) is reported as a failure."""
 
 from __future__ import annotations
 
@@ -14,6 +17,29 @@ from helpers import FMU_DIR, GEOROD_CLI, RELEASE_DIR, REPO, SCENES, FmuInfo, run
 
 RELEASE_LIB = RELEASE_DIR / "libgeorod.so"
 BUILD_FMUS = REPO / "scripts" / "build_fmus"
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]):  # noqa: ANN201
+    """Turns every skip into a failure: in this suite a skipped test is a check that did not
+    run while the run still says OK."""
+    outcome = yield
+    report = outcome.get_result()
+    if report.skipped and not hasattr(report, "wasxfail"):
+        reason = report.longrepr[2] if isinstance(report.longrepr, tuple) else report.longrepr
+        report.outcome = "failed"
+        report.longrepr = f"skipped, and skips are failures in this suite: {reason}"
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_make_collect_report(collector: pytest.Collector):  # noqa: ANN201
+    """The same for a whole module skipped at collection (pytest.importorskip, ...)."""
+    outcome = yield
+    report = outcome.get_result()
+    if report.skipped:
+        reason = report.longrepr[2] if isinstance(report.longrepr, tuple) else report.longrepr
+        report.outcome = "failed"
+        report.longrepr = f"skipped at collection, and skips are failures here: {reason}"
 
 
 def _stale(fmus: list[Path]) -> bool:

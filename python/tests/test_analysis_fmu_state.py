@@ -1,5 +1,5 @@
 """The Python codec of the serialized FMU state (src/fmi/fmu_state.rs layout): synthetic bytes
-without an FMU, and real states of the BuckledBeam FMU when it is built."""
+without an FMU, and real states of the BuckledBeam FMU (built by the session fixture if missing)."""
 
 from __future__ import annotations
 
@@ -18,9 +18,7 @@ from georod_tools.fmu_state import (
 )
 
 BEAM_FMU = Path(__file__).resolve().parents[2] / "target" / "fmu" / "BuckledBeam.fmu"
-needs_fmu = pytest.mark.skipif(
-    not BEAM_FMU.is_file(), reason=f"{BEAM_FMU} not built yet (run scripts/build_fmus)"
-)
+needs_fmu = pytest.mark.usefixtures("fmu_paths")  # builds the FMUs when missing or stale
 
 
 def synthetic(elements: int = 4) -> tuple[bytes, np.ndarray, np.ndarray]:

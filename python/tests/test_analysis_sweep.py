@@ -21,7 +21,7 @@ def test_sweep_values() -> None:
         sweep_values(0.0, 1.0, 0)
 
 
-@pytest.mark.skipif(not BEAM_FMU.is_file(), reason=f"{BEAM_FMU} not built yet (scripts/build_fmus)")
+@pytest.mark.usefixtures("fmu_paths")  # builds the FMUs when missing or stale
 def test_sweep_independent_of_workers(tmp_path: Path) -> None:
     from georod_tools.plots import plot_sweep, write_sweep_csv
     from georod_tools.runner import CaseConfig
@@ -51,7 +51,7 @@ def test_sweep_independent_of_workers(tmp_path: Path) -> None:
     assert png.stat().st_size > 1000
 
 
-@pytest.mark.skipif(not BEAM_FMU.is_file(), reason=f"{BEAM_FMU} not built yet (scripts/build_fmus)")
+@pytest.mark.usefixtures("fmu_paths")
 def test_sweep_on_given_scheduler() -> None:
     """--scheduler ADDR: the cases run on an existing cluster, same results as locally."""
     import logging

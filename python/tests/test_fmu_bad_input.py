@@ -1,7 +1,7 @@
 """Requirement 6: bad input through fmpy/ctypes. Every forbidden call order or bad argument returns
 fmi2Error (fmpy raises FMICallException with that `status`), a message reaches the logger
 callback, and the process survives (the test keeps running and frees the instance).
-A doStep that cannot converge returns fmi2Discard and leaves the state as it was."""
+A doStep that cannot converge (fmi2Discard, state as it was): test_fmu_retry.py."""
 
 from __future__ import annotations
 
@@ -9,15 +9,12 @@ import math
 from collections.abc import Callable
 from ctypes import byref, c_void_p
 
-import numpy as np
 import pytest
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave, fmi2FMUstate
 
 from helpers import (
-    DISCARD,
     ERROR,
-    LAST_SUCCESSFUL_TIME,
     OUTPUTS,
     FmuInfo,
     LogCapture,
@@ -254,33 +251,6 @@ def test_bad_serialized_state(fmus: dict[str, FmuInfo], log: LogCapture) -> None
         expect_error(log, other_mesh)
     finally:
         release(c)
-
-
-# --- a step that cannot converge -------------------------------------------------------------
-
-
-def test_diverging_step_is_discarded_with_state_untouched(beam: FmuInfo, log: LogCapture) -> None:
-    """A huge load with a huge internal step: Newton fails even after the sub-step halvings.
-    doStep returns fmi2Discard, logs why, the outputs stay those of the start of the step and
-    fmi2LastSuccessfulTime is the start of the step."""
-    slave = instantiate(beam, {"dt_max": 1e-2, "F": 1e7, "Omega": 0.0, "elements": 6}, log=log)
-    try:
-        h = 1e-2
-        before = get_reals(slave, beam, OUTPUTS)
-        state = slave.getFMUstate()
-        text = expect_error(log, lambda: slave.doStep(0.0, h), status=DISCARD)
-        assert text
-        assert get_reals(slave, beam, OUTPUTS) == before
-        assert slave.getRealStatus(LAST_SUCCESSFUL_TIME) == 0.0
-        # a host can roll back and go on with a small load
-        slave.setFMUstate(state)
-        slave.freeFMUstate(state)
-        slave.setReal([beam.vr["F"]], [0.0])
-        slave.doStep(0.0, 1e-4)
-        w = get_reals(slave, beam, ["w_mid"])[0]
-        assert np.isfinite(w)
-    finally:
-        release(slave)
 
 
 def test_process_survives_free_after_error(beam: FmuInfo, log: LogCapture) -> None:

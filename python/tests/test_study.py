@@ -25,9 +25,7 @@ from georod_tools.study import (
 
 REPO = Path(__file__).resolve().parents[2]
 BEAM_FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
-needs_fmu = pytest.mark.skipif(
-    not BEAM_FMU.is_file(), reason=f"{BEAM_FMU} not built yet (scripts/build_fmus)"
-)
+needs_fmu = pytest.mark.usefixtures("fmu_paths")  # builds the FMUs when missing or stale
 
 
 def _result(samples: np.ndarray, exponent: float) -> CaseResult:

@@ -97,8 +97,10 @@ pub struct Simulation {
     initial_values: ParamValues,
     energy: EnergyLedger,
     trial_energy: EnergyLedger,
-    /// The inputs to hold over the next communication step.
+    /// The inputs held over the last communication step (part of the state)...
     inputs: Vec<f64>,
+    /// ... and those to hold over the next one (set by the host).
+    next_inputs: Vec<f64>,
     /// The load magnitudes the load set was last built with.
     magnitudes: Vec<f64>,
     scratch_magnitudes: Vec<f64>,
@@ -161,6 +163,7 @@ impl Simulation {
             motion_path: vec![(0.0, 0.0); moving],
             motion_speeds: vec![0.0; moving],
             motion,
+            next_inputs: inputs.clone(),
             inputs,
             values,
             setup,
@@ -197,8 +200,9 @@ impl Simulation {
         self.clock.now()
     }
 
+    /// The inputs the next communication step will hold.
     pub fn inputs(&self) -> &[f64] {
-        &self.inputs
+        &self.next_inputs
     }
 
     /// Sets input `i` (held over the next communication step).
@@ -212,7 +216,7 @@ impl Simulation {
                 input.name
             )));
         }
-        self.inputs[i] = value;
+        self.next_inputs[i] = value;
         Ok(())
     }
 
@@ -245,7 +249,7 @@ impl Simulation {
         setup::load_magnitudes(
             &self.scene,
             &self.values,
-            &self.inputs,
+            &self.next_inputs,
             &mut self.scratch_magnitudes,
         );
         if self.scratch_magnitudes != self.magnitudes {
@@ -284,6 +288,7 @@ impl Simulation {
                     self.clock = self.clock.with_step(h / substeps as f64);
                     self.clock.count += substeps as u64;
                     self.last_newton_iterations = newton_iterations;
+                    self.inputs.copy_from_slice(&self.next_inputs);
                     for (r, j) in self.reactions.iter_mut().zip(&self.trial_impulses) {
                         *r = j.map(|x| x / h);
                     }
@@ -358,7 +363,7 @@ impl Simulation {
             .iter_mut()
             .zip(self.motion_speeds.iter_mut());
         for ((dof, input), (path, speed)) in moving.zip(paths) {
-            *path = (self.trial.u[dof], self.inputs[input]);
+            *path = (self.trial.u[dof], self.next_inputs[input]);
             *speed = (path.1 - path.0) / h;
         }
         motion.change_speeds(
@@ -555,6 +560,7 @@ impl Simulation {
         self.state.u.copy_from_slice(&s.displacements);
         self.state.v.copy_from_slice(&s.velocities);
         self.inputs.copy_from_slice(&s.inputs);
+        self.next_inputs.copy_from_slice(&s.inputs);
         self.reactions.copy_from_slice(&s.reactions);
         self.clock = s.clock;
         self.last_newton_iterations = s.last_newton_iterations;
@@ -573,6 +579,7 @@ impl Simulation {
         self.inputs = (0..self.scene.inputs.len())
             .map(|i| crate::scene::variables::input_start(&self.scene, i, &self.values))
             .collect();
+        self.next_inputs.clone_from(&self.inputs);
         self.energy = EnergyLedger {
             initial_energy: self.setup.rod.strain_energy(&self.initial.u),
             ..EnergyLedger::default()

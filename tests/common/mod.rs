@@ -1,10 +1,13 @@
 //! Shared helpers of the physics tests: a deterministic PRNG, dense copies of the block-tridiagonal
 //! matrices, a dense generalized symmetric eigen solver, and closed-form reference solutions
-//! (Timoshenko beam frequencies, the shear-deformable buckling load, the exact elastica).
+//! (Timoshenko beam frequencies, the shear-deformable buckling load, the exact elastica), and
+//! the adapters to the scene layer used by the tests (see [`simulation`]).
 #![allow(dead_code)]
 
+use georod::model::loads::{LoadShape, LoadTime};
 use georod::model::rod::{U1, U2};
-use georod::model::{ReferenceCurve, Rod, Section};
+use georod::model::{LoadSet, ReferenceCurve, Rod, Section};
+use georod::simulation::{AdvanceReport, SimError, Simulation};
 use georod::solver::BlockTridiagonal;
 use nalgebra::DMatrix;
 use std::f64::consts::PI;
@@ -353,4 +356,38 @@ pub fn set_input(sim: &mut georod::simulation::Simulation, name: &str, value: f6
 pub fn output(sim: &georod::simulation::Simulation, name: &str) -> f64 {
     sim.output_by_name(name)
         .unwrap_or_else(|| panic!("no output {name}"))
+}
+
+/// One communication step of `h` with the control force `f_ctrl` held.
+pub fn advance(sim: &mut Simulation, h: f64, f_ctrl: f64) -> Result<AdvanceReport, SimError> {
+    set_input(sim, "f_ctrl", f_ctrl);
+    sim.advance(h)
+}
+
+/// The loads of fixed direction along `-e2`: `F cos(Omega t)` per unit length on the whole rod
+/// (`distributed`) or at `s = S/2`, plus a constant point force at `s = S/2`.
+pub fn loads(rod: &Rod, distributed: bool, f: f64, omega: f64, point_force: f64) -> LoadSet {
+    let middle = LoadShape::Point {
+        s: 0.5 * rod.curve.length(),
+        component: U2,
+        sign: -1.0,
+    };
+    let excitation = if distributed {
+        LoadShape::Distributed {
+            component: U2,
+            sign: -1.0,
+        }
+    } else {
+        middle
+    };
+    let mut loads = LoadSet::new(
+        rod,
+        &[
+            (excitation, LoadTime::Harmonic { group: 0 }),
+            (middle, LoadTime::Constant),
+        ],
+    );
+    loads.set_magnitudes(&[f, point_force]);
+    loads.frequency = omega;
+    loads
 }

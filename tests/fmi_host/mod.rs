@@ -41,6 +41,10 @@ pub mod vr {
     pub const E_kin: u32 = 32;
     pub const E_strain: u32 = 33;
     pub const newton_iterations: u32 = 34;
+    pub const W_ext: u32 = 35;
+    pub const W_ctrl: u32 = 36;
+    pub const E_damped: u32 = 37;
+    pub const energy_error: u32 = 38;
     pub const w_mid: u32 = 2000;
     pub const v_mid: u32 = 2001;
 }
