@@ -201,7 +201,7 @@ impl Simulation {
     }
 
     /// The inputs the next communication step will hold.
-    pub fn inputs(&self) -> &[f64] {
+    pub fn next_inputs(&self) -> &[f64] {
         &self.next_inputs
     }
 
