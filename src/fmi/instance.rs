@@ -473,7 +473,7 @@ impl Instance {
             sim.set_input(i, x)
                 .map_err(|e| Failure::Error(e.to_string()))?;
         }
-        match sim.advance(h) {
+        match sim.advance_checked(h) {
             Ok(report) => {
                 self.log.trace(|| {
                     format!(

@@ -66,9 +66,12 @@ pub struct LoadSet {
     /// `Omega`
     pub frequency: f64,
     steady: Vec<f64>,
-    /// The constant and the input part of `steady` (for the energy ledger).
+    /// The constant and the input part of `steady` (for the energy ledger), and whether there
+    /// are any such loads (the ledger skips the products with vectors that stay zero).
     constant_part: Vec<f64>,
     input_part: Vec<f64>,
+    has_constant: bool,
+    has_input: bool,
 }
 
 impl LoadSet {
@@ -108,6 +111,8 @@ impl LoadSet {
             }
         }
         LoadSet {
+            has_constant: loads.iter().any(|(_, t)| *t == LoadTime::Constant),
+            has_input: loads.iter().any(|(_, t)| *t == LoadTime::Input),
             times: loads.iter().map(|(_, t)| *t).collect(),
             harmonic,
             steady_entries,
@@ -160,6 +165,13 @@ impl LoadSet {
                     *o += scale * s;
                 }
             }
+            // The step's residual takes -f_ext: `-s` is exactly `-1 * s`, one product less.
+            [(q, _)] if scale == -1.0 => {
+                let a = scale * self.excitation(0, t);
+                for ((o, q), s) in out.iter_mut().zip(q).zip(&self.steady) {
+                    *o += a * q - s;
+                }
+            }
             [(q, _)] => {
                 let a = scale * self.excitation(0, t);
                 for ((o, q), s) in out.iter_mut().zip(q).zip(&self.steady) {
@@ -181,29 +193,25 @@ impl LoadSet {
     /// The work of the loads over an increment `du` with the harmonic loads taken at `t`:
     /// `(constant and harmonic, input)`.
     pub fn work(&self, du: &[f64], t: f64) -> (f64, f64) {
-        let dot = |f: &[f64]| du.iter().zip(f).map(|(a, b)| a * b).sum::<f64>();
+        let dot = |f: &[f64], any: bool| {
+            if any {
+                du.iter().zip(f).map(|(a, b)| a * b).sum::<f64>()
+            } else {
+                0.0
+            }
+        };
         let harmonic: f64 = (0..self.harmonic.len())
-            .map(|g| self.excitation(g, t) * dot(&self.harmonic[g].0))
+            .map(|g| self.excitation(g, t) * dot(&self.harmonic[g].0, true))
             .sum();
-        (harmonic + dot(&self.constant_part), dot(&self.input_part))
-    }
-
-    /// The steady part (constant and input loads) of the nodal force at dof `k`.
-    pub fn steady_at(&self, k: usize) -> f64 {
-        self.steady[k]
+        (
+            harmonic + dot(&self.constant_part, self.has_constant),
+            dot(&self.input_part, self.has_input),
+        )
     }
 
     /// The constant loads' nodal force at dof `k`.
     pub fn constant_at(&self, k: usize) -> f64 {
         self.constant_part[k]
-    }
-
-    /// The nodal force at dof `k` at time `t`.
-    pub fn at(&self, k: usize, t: f64) -> f64 {
-        let harmonic: f64 = (0..self.harmonic.len())
-            .map(|g| self.excitation(g, t) * self.harmonic[g].0[k])
-            .sum();
-        harmonic + self.steady[k]
     }
 
     /// The constant loads alone (the loads of the initial static state).

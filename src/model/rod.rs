@@ -84,16 +84,23 @@ impl Rod {
         Vector6::from_column_slice(&x[3 * e..3 * e + 6])
     }
 
-    /// Element `e`'s part of `M x` (or, with `damping`, of `C x`) on its six dofs.
-    pub fn element_pattern_times(&self, e: usize, x: &Vector6, damping: bool) -> Vector6 {
-        let c = self.inertia[e].coefficients(damping);
-        let mut out = Vector6::zeros();
-        for k in 0..3 {
-            let (a, b) = (x[k], x[3 + k]);
-            out[k] = c[k] * (2.0 * a + b);
-            out[3 + k] = c[k] * (a + 2.0 * b);
+    /// Row `offset + k` (offset 0 or 3) of element `e`'s part of `M x` (or, with `damping`,
+    /// of `C x`), `x` a global vector.
+    pub fn element_pattern_row(
+        &self,
+        e: usize,
+        offset: usize,
+        k: usize,
+        x: &[f64],
+        damping: bool,
+    ) -> f64 {
+        let c = self.inertia[e].coefficients(damping)[k];
+        let (a, b) = (x[3 * e + k], x[3 * e + 3 + k]);
+        c * if offset == 0 {
+            2.0 * a + b
+        } else {
+            a + 2.0 * b
         }
-        out
     }
 
     /// The elements that hold node `i` (one at an end, two inside), with the offset of the
@@ -107,11 +114,6 @@ impl Rod {
     /// Element `e`'s internal force on its six dofs.
     pub fn element_internal_force(&self, e: usize, ue: &Vector6) -> Vector6 {
         self.elements[e].internal_force(&self.section, ue)
-    }
-
-    /// Element `e`'s energy-momentum discrete gradient between `a` and `b`.
-    pub fn element_discrete_gradient(&self, e: usize, a: &Vector6, b: &Vector6) -> Vector6 {
-        self.elements[e].discrete_gradient(&self.section, a, b)
     }
 
     /// The rows of node `i` of `f_int(u)`: O(1).

@@ -155,22 +155,29 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
         let _ = writeln!(w, "  </UnitDefinitions>");
     }
 
-    if vars.iter().any(|v| v.declared_type == Some("Integrator")) {
+    let types: Vec<_> = ENUMERATIONS
+        .iter()
+        .filter(|(name, ..)| vars.iter().any(|v| v.declared_type == Some(name)))
+        .collect();
+    if !types.is_empty() {
         let _ = writeln!(w, "  <TypeDefinitions>");
-        let _ = writeln!(
-            w,
-            r#"    <SimpleType name="Integrator" description="Time integration scheme">"#
-        );
-        let _ = writeln!(w, "      <Enumeration>");
-        for (name, value, desc) in INTEGRATORS {
+        for (name, description, items) in types {
             let _ = writeln!(
                 w,
-                r#"        <Item name="{name}" value="{value}" description="{}"/>"#,
-                escape(desc)
+                r#"    <SimpleType name="{name}" description="{}">"#,
+                escape(description)
             );
+            let _ = writeln!(w, "      <Enumeration>");
+            for (item, value, desc) in *items {
+                let _ = writeln!(
+                    w,
+                    r#"        <Item name="{item}" value="{value}" description="{}"/>"#,
+                    escape(desc)
+                );
+            }
+            let _ = writeln!(w, "      </Enumeration>");
+            let _ = writeln!(w, "    </SimpleType>");
         }
-        let _ = writeln!(w, "      </Enumeration>");
-        let _ = writeln!(w, "    </SimpleType>");
         let _ = writeln!(w, "  </TypeDefinitions>");
     }
 
@@ -261,12 +268,29 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
     ModelDescription { xml, guid }
 }
 
-/// The items of the `Integrator` enumeration: (name, value, description).
-pub const INTEGRATORS: [(&str, i32, &str); 2] = [
-    ("midpoint", 1, "Implicit midpoint rule (symplectic, conserves momenta)"),
+/// An enumeration item: (name, value, description).
+type Item = (&'static str, i32, &'static str);
+
+/// The enumeration types: (name, description, items).
+const ENUMERATIONS: [(&str, &str, &[Item]); 2] = [
     (
-        "energy_momentum",
-        2,
-        "Energy-momentum scheme (discrete gradient, Cayley rotations): conserves energy, linear and angular momentum",
+        "Integrator",
+        "Time integration scheme",
+        &[
+            ("midpoint", 1, "Implicit midpoint rule (symplectic, conserves momenta)"),
+            (
+                "energy_momentum",
+                2,
+                "Energy-momentum scheme (discrete gradient, Cayley rotations): conserves energy, linear and angular momentum",
+            ),
+        ],
+    ),
+    (
+        "Well",
+        "Initial equilibrium, by the sign of the branch sensor",
+        &[
+            ("down", -1, "The branch sensor negative"),
+            ("up", 1, "The branch sensor positive"),
+        ],
     ),
 ];

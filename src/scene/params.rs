@@ -44,12 +44,10 @@ impl Range {
         }
     }
 
+    /// Every positive normal number: declared as an inclusive bound (FMI 2.0 `min` is
+    /// inclusive), so that a host may set exactly the declared minimum.
     pub const fn positive() -> Range {
-        Range {
-            min: Some(0.0),
-            min_exclusive: true,
-            ..Range::ANY
-        }
+        Range::at_least(f64::MIN_POSITIVE)
     }
 
     pub const fn between(min: f64, max: f64) -> Range {
@@ -60,8 +58,14 @@ impl Range {
         }
     }
 
-    /// The range in words, e.g. `(-1, 0.5)` or `>= 0`; `None` if any finite value goes.
+    /// The range in words, e.g. `[-0.999, 0.5]` or `>= 0`; `None` if any finite value goes.
     pub fn text(&self) -> Option<String> {
+        if *self == Range::positive() {
+            return Some(format!(
+                "> 0 (>= {:e}, the smallest normal number)",
+                f64::MIN_POSITIVE
+            ));
+        }
         let lo = self
             .min
             .map(|m| (if self.min_exclusive { "(" } else { "[" }, m));
@@ -202,12 +206,8 @@ const ALWAYS: [Standard; 10] = [
         "1",
         "Poisson's ratio (shear modulus G = E / (2 (1 + nu)))",
         0.2,
-        Range {
-            min: Some(-1.0),
-            max: Some(0.5),
-            min_exclusive: true,
-            max_exclusive: true,
-        },
+        // nu -> -1 makes G infinite; nu = 0.5 (G = E/3) is fine for a rod.
+        Range::between(-0.999, 0.5),
     ),
     real("rho", 2, "kg/m3", "Mass density", 1.0e-6, Range::positive()),
     real(
@@ -308,11 +308,11 @@ const RISE: Standard = real(
     Range::positive(),
 );
 
-/// Present when the initial state picks a branch.
+/// Present when the initial state picks a branch (an enumeration: -1 down, +1 up).
 const BRANCH: Standard = Standard {
     name: WELL,
     vr: 12,
-    var_type: VarType::Integer,
+    var_type: VarType::Enumeration,
     variability: Variability::Fixed,
     unit: None,
     description: "Initial equilibrium: +1 or -1, the sign of the branch sensor in it",
@@ -415,7 +415,10 @@ mod tests {
 
     #[test]
     fn ranges_in_words() {
-        assert_eq!(Range::positive().text().unwrap(), "> 0");
+        assert!(Range::positive()
+            .text()
+            .unwrap()
+            .starts_with("> 0 (>= 2.2250738585072014e-308"));
         assert_eq!(Range::between(2.0, 5.0).text().unwrap(), "[2, 5]");
         assert!(Range::positive().admits(1e-300));
         assert!(!Range::positive().admits(0.0));

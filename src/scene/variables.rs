@@ -194,7 +194,13 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
             start: Some(p.start),
             range: p.range,
             role: Role::Parameter(i),
-            declared_type: (p.var_type == VarType::Enumeration).then_some("Integrator"),
+            declared_type: (p.var_type == VarType::Enumeration).then_some(
+                if p.name == super::params::WELL {
+                    "Well"
+                } else {
+                    "Integrator"
+                },
+            ),
         });
     }
     for (i, input) in scene.inputs.iter().enumerate() {

@@ -17,6 +17,7 @@ pub use snapshot::{Clock, EnergyLedger, Snapshot, SNAPSHOT_VERSION};
 use crate::integrator::{DynamicState, Midpoint, NewtonFailure, Scheme};
 use crate::scene::{ParamError, ParamValues, Scene, Std, Variability};
 use setup::Setup;
+use std::cell::Cell;
 use std::fmt;
 use std::sync::Arc;
 use supports::MotionSolver;
@@ -82,6 +83,10 @@ pub struct AdvanceReport {
     pub warning: Option<String>,
 }
 
+/// What a successful attempt at a communication step did: corrections, factorizations, and
+/// (when checked) the kinetic and strain energy it ends with.
+type Attempt = (u32, u32, Option<(f64, f64)>);
+
 pub struct Simulation {
     scene: Arc<Scene>,
     values: ParamValues,
@@ -97,12 +102,17 @@ pub struct Simulation {
     initial_values: ParamValues,
     energy: EnergyLedger,
     trial_energy: EnergyLedger,
+    /// Kinetic and strain energy of the state, computed when first asked for after a change
+    /// (or by [`Simulation::advance_checked`]).
+    energies: Cell<Option<(f64, f64)>>,
     /// The inputs held over the last communication step (part of the state)...
     inputs: Vec<f64>,
     /// ... and those to hold over the next one (set by the host).
     next_inputs: Vec<f64>,
-    /// The load magnitudes the load set was last built with.
+    /// The load magnitudes the load set was last built with, and whether an input or a
+    /// tunable parameter changed since.
     magnitudes: Vec<f64>,
+    loads_stale: bool,
     scratch_magnitudes: Vec<f64>,
     /// Reactions reported after the last step (per support: Rx, Ry, M).
     reactions: Vec<[f64; 3]>,
@@ -133,6 +143,8 @@ impl Simulation {
             DynamicState::at_rest(initial::initial_displacements(&scene, &values, &setup)?);
         let static_reactions = supports::static_reactions(&setup, &initial.u);
         let mut integrator = Midpoint::new(&setup.rod);
+        let held: Vec<usize> = setup.held.iter().map(|h| h.dof).collect();
+        integrator.keep_rows(&held);
         integrator.scheme = if values.std(Std::Integrator) == 2.0 {
             Scheme::EnergyMomentum
         } else {
@@ -143,9 +155,13 @@ impl Simulation {
             ..EnergyLedger::default()
         };
         let moving = setup.held.iter().filter(|h| h.input.is_some()).count();
-        let motion = (moving > 0).then(|| MotionSolver::new(&setup.rod));
+        let motion = match moving {
+            0 => None,
+            _ => Some(MotionSolver::new(&setup.rod).map_err(SimError::InitialState)?),
+        };
         let sim = Simulation {
             integrator,
+            energies: Cell::new(Some((0.0, energy.initial_energy))),
             energy,
             trial_energy: energy,
             state: initial.clone(),
@@ -155,6 +171,7 @@ impl Simulation {
             last_newton_iterations: 0,
             initial_values: values.clone(),
             scratch_magnitudes: magnitudes.clone(),
+            loads_stale: false,
             magnitudes,
             reactions: static_reactions.clone(),
             trial_impulses: vec![[0.0; 3]; static_reactions.len()],
@@ -169,7 +186,7 @@ impl Simulation {
             setup,
             scene,
         };
-        sim.check_finite().map_err(|what| {
+        sim.check_outputs().map_err(|what| {
             SimError::InitialState(format!("the initial state has a non-finite {what}"))
         })?;
         Ok(sim)
@@ -217,6 +234,7 @@ impl Simulation {
             )));
         }
         self.next_inputs[i] = value;
+        self.loads_stale = true;
         Ok(())
     }
 
@@ -231,6 +249,7 @@ impl Simulation {
             ));
         }
         self.values.0[index] = value;
+        self.loads_stale = true;
         if param.name == "Omega" {
             self.setup.loads.frequency = value;
         }
@@ -246,6 +265,9 @@ impl Simulation {
 
     /// Rebuilds the load set if a load's magnitude changed (inputs, tunable parameters).
     fn refresh_loads(&mut self) {
+        if !std::mem::take(&mut self.loads_stale) {
+            return;
+        }
         setup::load_magnitudes(
             &self.scene,
             &self.values,
@@ -264,6 +286,19 @@ impl Simulation {
     /// the sub-step size (at most [`MAX_STEP_CUTS`] times); if it still fails, the state is left
     /// exactly as it was.
     pub fn advance(&mut self, h: f64) -> Result<AdvanceReport, SimError> {
+        self.advance_inner(h, false)
+    }
+
+    /// [`Simulation::advance`] that also refuses a step after which the kinetic or the strain
+    /// energy is not a finite number (overflow on absurd parameters), so that every output of
+    /// a successful step is finite; the energies are then kept for the outputs. What an FMU
+    /// runs: computing the energies costs about one internal-force evaluation per
+    /// communication step, which a host reading them would pay anyway.
+    pub fn advance_checked(&mut self, h: f64) -> Result<AdvanceReport, SimError> {
+        self.advance_inner(h, true)
+    }
+
+    fn advance_inner(&mut self, h: f64, check_energies: bool) -> Result<AdvanceReport, SimError> {
         if !(h.is_finite() && h > 0.0) {
             return Err(SimError::BadArgument(format!(
                 "step size {h} must be finite and > 0"
@@ -281,9 +316,10 @@ impl Simulation {
         }
         let mut last_failure = None;
         for cuts in 0..=MAX_STEP_CUTS {
-            match self.try_substeps(h, substeps) {
-                Ok((newton_iterations, factorizations)) => {
+            match self.try_substeps(h, substeps, check_energies) {
+                Ok((newton_iterations, factorizations, energies)) => {
                     std::mem::swap(&mut self.state, &mut self.trial);
+                    self.energies.set(energies);
                     self.energy = self.trial_energy;
                     self.clock = self.clock.with_step(h / substeps as f64);
                     self.clock.count += substeps as u64;
@@ -317,8 +353,14 @@ impl Simulation {
     }
 
     /// Sub-steps of `h / substeps` on the trial state. Returns the corrections and the
-    /// factorizations summed over the sub-steps, or why it failed.
-    fn try_substeps(&mut self, h: f64, substeps: usize) -> Result<(u32, u32), String> {
+    /// factorizations summed over the sub-steps and (when checked) the trial's kinetic and
+    /// strain energy, or why it failed.
+    fn try_substeps(
+        &mut self,
+        h: f64,
+        substeps: usize,
+        check_energies: bool,
+    ) -> Result<Attempt, String> {
         self.trial.copy_from(&self.state);
         self.trial_energy = self.energy;
         self.trial_impulses.iter_mut().for_each(|j| *j = [0.0; 3]);
@@ -345,51 +387,15 @@ impl Simulation {
         }
         self.check_trial()
             .map_err(|what| format!("a non-finite {what} after the step"))?;
-        Ok((iterations, factorizations))
-    }
-
-    /// Sets up the moving supports' paths over a step of `h` and their speed change.
-    fn start_motion(&mut self, h: f64) {
-        let Some(motion) = self.motion.as_mut() else {
-            return;
+        let energies = if check_energies {
+            Some(
+                self.trial_energies()
+                    .map_err(|what| format!("a non-finite {what} after the step"))?,
+            )
+        } else {
+            None
         };
-        let moving = self
-            .setup
-            .held
-            .iter()
-            .filter_map(|h| h.input.map(|i| (h.dof, i)));
-        let paths = self
-            .motion_path
-            .iter_mut()
-            .zip(self.motion_speeds.iter_mut());
-        for ((dof, input), (path, speed)) in moving.zip(paths) {
-            *path = (self.trial.u[dof], self.next_inputs[input]);
-            *speed = (path.1 - path.0) / h;
-        }
-        motion.change_speeds(
-            &self.setup.rod,
-            &self.setup.held,
-            &self.motion_speeds,
-            &mut self.trial,
-            &mut self.trial_impulses,
-            &mut self.trial_energy,
-        );
-    }
-
-    /// The increments of the moving held dofs over sub-step `k` of `n`.
-    fn motion_increments(&mut self, k: usize, n: usize) {
-        self.prescribed.clear();
-        let moving = self.setup.held.iter().filter(|h| h.input.is_some());
-        for (h, &(a, b)) in moving.zip(&self.motion_path) {
-            let at = |j: usize| {
-                if j == n {
-                    b
-                } else {
-                    a + (b - a) * (j as f64 / n as f64)
-                }
-            };
-            self.prescribed.push((h.dof, at(k + 1) - at(k)));
-        }
+        Ok((iterations, factorizations, energies))
     }
 
     /// Books the work, dissipation and reactions of the sub-step just taken.
@@ -403,51 +409,10 @@ impl Simulation {
         supports::book_reactions(
             &self.setup,
             &self.integrator,
-            &self.trial,
-            t_mid,
             dt,
             &mut self.trial_impulses,
             &mut self.trial_energy,
         );
-    }
-
-    /// A converged step can still reach non-finite numbers (overflow on absurd parameters).
-    fn check_trial(&self) -> Result<(), &'static str> {
-        if !self
-            .trial
-            .u
-            .iter()
-            .chain(&self.trial.v)
-            .all(|x| x.is_finite())
-        {
-            return Err("displacement or velocity");
-        }
-        if !self.trial_energy.is_finite() {
-            return Err("energy");
-        }
-        if !self.trial_impulses.iter().flatten().all(|x| x.is_finite()) {
-            return Err("reaction");
-        }
-        Ok(())
-    }
-
-    fn check_finite(&self) -> Result<(), &'static str> {
-        if !self
-            .state
-            .u
-            .iter()
-            .chain(&self.state.v)
-            .all(|x| x.is_finite())
-        {
-            return Err("displacement");
-        }
-        if !self.energy.is_finite() {
-            return Err("strain energy");
-        }
-        if !self.reactions.iter().flatten().all(|x| x.is_finite()) {
-            return Err("reaction");
-        }
-        Ok(())
     }
 
     /// Sub-steps of half a forcing period or more sample the excitation at its midpoints only:
@@ -476,116 +441,5 @@ impl Simulation {
     /// the static ones before the first.
     pub fn reactions(&self) -> &[[f64; 3]] {
         &self.reactions
-    }
-
-    pub fn snapshot(&self) -> Snapshot {
-        Snapshot {
-            version: SNAPSHOT_VERSION,
-            scene: self.scene.name.clone(),
-            elements: self.values.elements(),
-            time: self.time(),
-            displacements: self.state.u.clone(),
-            velocities: self.state.v.clone(),
-            values: self.values.0.clone(),
-            inputs: self.inputs.clone(),
-            reactions: self.reactions.clone(),
-            last_newton_iterations: self.last_newton_iterations,
-            energy: self.energy,
-            clock: self.clock,
-        }
-    }
-
-    /// Continues from a snapshot of a simulation of the same scene and fixed parameters.
-    pub fn restore(&mut self, s: &Snapshot) -> Result<(), SimError> {
-        let bad = |why: String| Err(SimError::BadSnapshot(why));
-        if s.version != SNAPSHOT_VERSION {
-            return bad(format!(
-                "version {} (this build reads {SNAPSHOT_VERSION})",
-                s.version
-            ));
-        }
-        if s.scene != self.scene.name {
-            return bad(format!(
-                "taken from a {} (this is a {})",
-                s.scene, self.scene.name
-            ));
-        }
-        if s.elements != self.values.elements() {
-            return bad(format!(
-                "{} elements (this rod has {})",
-                s.elements,
-                self.values.elements()
-            ));
-        }
-        let n = self.setup.rod.dofs();
-        if s.displacements.len() != n
-            || s.velocities.len() != n
-            || s.values.len() != self.values.0.len()
-            || s.inputs.len() != self.inputs.len()
-            || s.reactions.len() != self.reactions.len()
-        {
-            return bad("vectors of the wrong length".to_string());
-        }
-        let numbers = s
-            .displacements
-            .iter()
-            .chain(&s.velocities)
-            .chain(&s.values)
-            .chain(&s.inputs);
-        if !(s.time.is_finite()
-            && numbers
-                .chain(s.reactions.iter().flatten())
-                .all(|x| x.is_finite())
-            && s.energy.is_finite()
-            && s.clock.is_finite())
-        {
-            return bad("non-finite values".to_string());
-        }
-        let mut values = self.values.clone();
-        for (i, &x) in s.values.iter().enumerate() {
-            let p = &self.scene.params[i];
-            if p.variability == Variability::Fixed && x != self.values.get(i) {
-                return bad(format!(
-                    "the fixed parameter `{}` differs ({x}, here {})",
-                    p.name,
-                    self.values.get(i)
-                ));
-            }
-            p.check(x).map_err(SimError::Param)?;
-            values.0[i] = x;
-        }
-        for i in 0..values.0.len() {
-            self.set_param(i, values.get(i))?;
-        }
-        self.state.u.copy_from_slice(&s.displacements);
-        self.state.v.copy_from_slice(&s.velocities);
-        self.inputs.copy_from_slice(&s.inputs);
-        self.next_inputs.copy_from_slice(&s.inputs);
-        self.reactions.copy_from_slice(&s.reactions);
-        self.clock = s.clock;
-        self.last_newton_iterations = s.last_newton_iterations;
-        self.energy = s.energy;
-        Ok(())
-    }
-
-    /// Back to the initial state at `t = 0`, with the values and inputs it was built with.
-    pub fn reset(&mut self) {
-        let values = self.initial_values.clone();
-        for i in 0..values.0.len() {
-            self.set_param(i, values.get(i))
-                .expect("the initial values were valid");
-        }
-        self.state.copy_from(&self.initial);
-        self.inputs = (0..self.scene.inputs.len())
-            .map(|i| crate::scene::variables::input_start(&self.scene, i, &self.values))
-            .collect();
-        self.next_inputs.clone_from(&self.inputs);
-        self.energy = EnergyLedger {
-            initial_energy: self.setup.rod.strain_energy(&self.initial.u),
-            ..EnergyLedger::default()
-        };
-        self.reactions.clone_from(&self.static_reactions);
-        self.clock = Clock::start();
-        self.last_newton_iterations = 0;
     }
 }

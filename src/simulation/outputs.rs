@@ -3,6 +3,10 @@
 use super::Simulation;
 use crate::scene::variables::{OutputId, StandardOutput};
 
+/// Displacements and velocities beyond this have blown up in any unit system; refusing them
+/// keeps every output (interpolations, positions, energies) finite.
+const BLOWN_UP: f64 = 1e100;
+
 impl Simulation {
     /// The value of an output at the current time.
     pub fn output(&self, id: OutputId) -> f64 {
@@ -34,12 +38,26 @@ impl Simulation {
         ]
     }
 
+    /// Kinetic and strain energy of the state (computed once after each change).
+    fn energies(&self) -> (f64, f64) {
+        if let Some(e) = self.energies.get() {
+            return e;
+        }
+        let rod = self.rod();
+        let e = (
+            rod.kinetic_energy(&self.state().v),
+            rod.strain_energy(&self.state().u),
+        );
+        self.energies.set(Some(e));
+        e
+    }
+
     pub fn kinetic_energy(&self) -> f64 {
-        self.rod().kinetic_energy(&self.state().v)
+        self.energies().0
     }
 
     pub fn strain_energy(&self) -> f64 {
-        self.rod().strain_energy(&self.state().u)
+        self.energies().1
     }
 
     /// `E_kin + E_strain - E(0) - W_ext - W_ctrl - W_supports + E_damped`.
@@ -76,5 +94,51 @@ impl Simulation {
                 crate::scene::variables::Role::Output(id) => Some(self.output(id)),
                 _ => None,
             })
+    }
+
+    /// A converged step can still reach numbers no output can show (overflow on absurd
+    /// parameters): the trial state, its ledger and reactions must be finite and not blown up.
+    pub(super) fn check_trial(&self) -> Result<(), &'static str> {
+        // NaN fails the comparison too.
+        let bounded = |x: &[f64]| x.iter().all(|v| v.abs() <= BLOWN_UP);
+        if !(bounded(&self.trial.u) && bounded(&self.trial.v)) {
+            return Err("or blown-up displacement or velocity");
+        }
+        if !self.trial_energy.is_finite() {
+            return Err("energy ledger");
+        }
+        if !self.trial_impulses.iter().flatten().all(|x| x.is_finite()) {
+            return Err("reaction");
+        }
+        Ok(())
+    }
+
+    /// The trial's kinetic and strain energy, if finite.
+    pub(super) fn trial_energies(&self) -> Result<(f64, f64), &'static str> {
+        let kinetic = self.setup.rod.kinetic_energy(&self.trial.v);
+        let strain = self.setup.rod.strain_energy(&self.trial.u);
+        if kinetic.is_finite() && strain.is_finite() {
+            Ok((kinetic, strain))
+        } else {
+            Err("kinetic or strain energy")
+        }
+    }
+
+    /// Every output finite (checked once, for the initial state: geometry and parameters that
+    /// overflow show here).
+    pub(super) fn check_outputs(&self) -> Result<(), String> {
+        for v in crate::scene::variables::variables(self.scene()) {
+            if let crate::scene::variables::Role::Output(id) = v.role {
+                let x = self.output(id);
+                if !x.is_finite() {
+                    return Err(format!("output `{}` = {x}", v.name));
+                }
+            }
+        }
+        let blown = |x: &f64| x.abs() > BLOWN_UP;
+        if self.state().u.iter().any(blown) {
+            return Err("displacement (beyond 1e100)".to_string());
+        }
+        Ok(())
     }
 }

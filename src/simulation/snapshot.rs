@@ -1,5 +1,7 @@
 //! The simulation clock, the energy ledger, and snapshots: everything needed to continue a
 //! simulation exactly.
+use super::{SimError, Simulation};
+use crate::scene::Variability;
 use serde::{Deserialize, Serialize};
 
 /// Version of [`Snapshot`]'s layout; bump it when the fields change.
@@ -101,4 +103,121 @@ pub struct Snapshot {
     pub last_newton_iterations: u32,
     pub energy: EnergyLedger,
     pub clock: Clock,
+}
+
+impl Simulation {
+    pub fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            version: SNAPSHOT_VERSION,
+            scene: self.scene.name.clone(),
+            elements: self.values.elements(),
+            time: self.time(),
+            displacements: self.state.u.clone(),
+            velocities: self.state.v.clone(),
+            values: self.values.0.clone(),
+            inputs: self.inputs.clone(),
+            reactions: self.reactions.clone(),
+            last_newton_iterations: self.last_newton_iterations,
+            energy: self.energy,
+            clock: self.clock,
+        }
+    }
+
+    /// Continues from a snapshot of a simulation of the same scene and fixed parameters.
+    pub fn restore(&mut self, s: &Snapshot) -> Result<(), SimError> {
+        let bad = |why: String| Err(SimError::BadSnapshot(why));
+        if s.version != SNAPSHOT_VERSION {
+            return bad(format!(
+                "version {} (this build reads {SNAPSHOT_VERSION})",
+                s.version
+            ));
+        }
+        if s.scene != self.scene.name {
+            return bad(format!(
+                "taken from a {} (this is a {})",
+                s.scene, self.scene.name
+            ));
+        }
+        if s.elements != self.values.elements() {
+            return bad(format!(
+                "{} elements (this rod has {})",
+                s.elements,
+                self.values.elements()
+            ));
+        }
+        let n = self.setup.rod.dofs();
+        if s.displacements.len() != n
+            || s.velocities.len() != n
+            || s.values.len() != self.values.0.len()
+            || s.inputs.len() != self.inputs.len()
+            || s.reactions.len() != self.reactions.len()
+        {
+            return bad("vectors of the wrong length".to_string());
+        }
+        let numbers = s
+            .displacements
+            .iter()
+            .chain(&s.velocities)
+            .chain(&s.values)
+            .chain(&s.inputs);
+        if !(s.time.is_finite()
+            && numbers
+                .chain(s.reactions.iter().flatten())
+                .all(|x| x.is_finite())
+            && s.energy.is_finite()
+            && s.clock.is_finite())
+        {
+            return bad("non-finite values".to_string());
+        }
+        let mut values = self.values.clone();
+        for (i, &x) in s.values.iter().enumerate() {
+            let p = &self.scene.params[i];
+            if p.variability == Variability::Fixed && x != self.values.get(i) {
+                return bad(format!(
+                    "the fixed parameter `{}` differs ({x}, here {})",
+                    p.name,
+                    self.values.get(i)
+                ));
+            }
+            p.check(x).map_err(SimError::Param)?;
+            values.0[i] = x;
+        }
+        for i in 0..values.0.len() {
+            self.set_param(i, values.get(i))?;
+        }
+        self.state.u.copy_from_slice(&s.displacements);
+        self.state.v.copy_from_slice(&s.velocities);
+        self.inputs.copy_from_slice(&s.inputs);
+        self.next_inputs.copy_from_slice(&s.inputs);
+        self.loads_stale = true;
+        self.reactions.copy_from_slice(&s.reactions);
+        self.clock = s.clock;
+        self.last_newton_iterations = s.last_newton_iterations;
+        self.energy = s.energy;
+        self.energies.set(None);
+        Ok(())
+    }
+
+    /// Back to the initial state at `t = 0`, with the values and inputs it was built with.
+    pub fn reset(&mut self) {
+        let values = self.initial_values.clone();
+        for i in 0..values.0.len() {
+            self.set_param(i, values.get(i))
+                .expect("the initial values were valid");
+        }
+        self.state.copy_from(&self.initial);
+        self.inputs = (0..self.scene.inputs.len())
+            .map(|i| crate::scene::variables::input_start(&self.scene, i, &self.values))
+            .collect();
+        self.next_inputs.clone_from(&self.inputs);
+        self.loads_stale = true;
+        self.energy = EnergyLedger {
+            initial_energy: self.setup.rod.strain_energy(&self.initial.u),
+            ..EnergyLedger::default()
+        };
+        self.reactions.clone_from(&self.static_reactions);
+        self.energies.set(Some((0.0, self.energy.initial_energy)));
+        self.clock = Clock::start();
+        self.last_newton_iterations = 0;
+    }
 }

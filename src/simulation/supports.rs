@@ -9,6 +9,7 @@
 //! of the supports' work (it is exactly the kinetic energy it adds).
 use super::setup::{Held, Setup};
 use super::snapshot::EnergyLedger;
+use super::Simulation;
 use crate::integrator::{DynamicState, Midpoint};
 use crate::model::Rod;
 use crate::solver::BlockTridiagonal;
@@ -21,17 +22,20 @@ pub struct MotionSolver {
 }
 
 impl MotionSolver {
-    pub fn new(rod: &Rod) -> MotionSolver {
+    /// Fails when the mass matrix cannot be factored (a density or section so small that the
+    /// masses underflow).
+    pub fn new(rod: &Rod) -> Result<MotionSolver, String> {
         let mut mass = BlockTridiagonal::new(rod.nodes());
         rod.add_mass(&mut mass, 1.0);
         mass.constrain(&rod.fixed);
-        mass.factor()
-            .expect("the consistent mass matrix is positive definite");
-        MotionSolver {
+        mass.factor().map_err(|e| {
+            format!("the mass matrix has a {e}: rho A or rho I too small to be represented")
+        })?;
+        Ok(MotionSolver {
             mass,
             dv: vec![0.0; rod.dofs()],
             impulse: vec![0.0; rod.dofs()],
-        }
+        })
     }
 
     /// Sets the held dofs' velocities to `speeds` (one per entry of `held` with an input;
@@ -78,27 +82,19 @@ impl MotionSolver {
     }
 }
 
-/// Adds the reaction impulses of the sub-step just taken (`dt` times the residual rows of the
-/// held dofs) and the supports' work over it.
-#[allow(clippy::too_many_arguments)]
+/// Adds the reaction impulses of the sub-step just taken (`dt` times the held dofs' rows of the
+/// equation of motion, see `Midpoint::held_rows`) and the supports' work over it.
 pub fn book_reactions(
     setup: &Setup,
     integrator: &Midpoint,
-    state: &DynamicState,
-    t_mid: f64,
     dt: f64,
     impulses: &mut [[f64; 3]],
     ledger: &mut EnergyLedger,
 ) {
     let du = integrator.last_increment();
-    for (k, &node) in setup.support_nodes.iter().enumerate() {
-        let rows = integrator.node_residual(&setup.rod, &setup.loads, state, t_mid, dt, node);
-        for (c, r) in rows.iter().enumerate() {
-            if setup.rod.fixed[3 * node + c] {
-                impulses[k][c] += dt * r;
-                ledger.support_work += r * du[3 * node + c];
-            }
-        }
+    for (h, &r) in setup.held.iter().zip(integrator.held_rows()) {
+        impulses[h.support][h.component] += dt * r;
+        ledger.support_work += r * du[h.dof];
     }
 }
 
@@ -120,4 +116,53 @@ pub fn static_reactions(setup: &Setup, u: &[f64]) -> Vec<[f64; 3]> {
             r
         })
         .collect()
+}
+
+impl Simulation {
+    /// Sets up the moving supports' paths over a step of `h` and their speed change.
+    pub(super) fn start_motion(&mut self, h: f64) {
+        let Some(motion) = self.motion.as_mut() else {
+            return;
+        };
+        let moving = self
+            .setup
+            .held
+            .iter()
+            .filter_map(|h| h.input.map(|i| (h.dof, i)));
+        let paths = self
+            .motion_path
+            .iter_mut()
+            .zip(self.motion_speeds.iter_mut());
+        for ((dof, input), (path, speed)) in moving.zip(paths) {
+            *path = (self.trial.u[dof], self.next_inputs[input]);
+            *speed = (path.1 - path.0) / h;
+        }
+        motion.change_speeds(
+            &self.setup.rod,
+            &self.setup.held,
+            &self.motion_speeds,
+            &mut self.trial,
+            &mut self.trial_impulses,
+            &mut self.trial_energy,
+        );
+    }
+
+    /// The increments of the moving held dofs over sub-step `k` of `n`.
+    pub(super) fn motion_increments(&mut self, k: usize, n: usize) {
+        if self.motion_path.is_empty() {
+            return; // no moving support: `prescribed` stays empty
+        }
+        self.prescribed.clear();
+        let moving = self.setup.held.iter().filter(|h| h.input.is_some());
+        for (h, &(a, b)) in moving.zip(&self.motion_path) {
+            let at = |j: usize| {
+                if j == n {
+                    b
+                } else {
+                    a + (b - a) * (j as f64 / n as f64)
+                }
+            };
+            self.prescribed.push((h.dof, at(k + 1) - at(k)));
+        }
+    }
 }
