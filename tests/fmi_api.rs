@@ -855,7 +855,12 @@ fn bad_values_name_the_variable_and_the_range() {
     );
     fmu.expect_error(fmu.set_real(vr::E, f64::INFINITY), &["`E`", "inf"]);
     fmu.expect_error(fmu.set_real(vr::E, -1.0), &["`E`", "out of range", "> 0"]);
-    fmu.expect_error(fmu.set_real(vr::nu, 0.5), &["`nu`", "(-1, 0.5)"]);
+    fmu.expect_error(fmu.set_real(vr::nu, 0.51), &["`nu`", "[-0.999, 0.5]"]);
+    // The declared bounds themselves are accepted (FMI 2.0 bounds are inclusive).
+    assert_eq!(fmu.set_real(vr::nu, 0.5), fmi2Status::OK);
+    assert_eq!(fmu.set_real(vr::E, f64::MIN_POSITIVE), fmi2Status::OK);
+    assert_eq!(fmu.set_real(vr::E, 1.2e4), fmi2Status::OK);
+    assert_eq!(fmu.set_real(vr::nu, 0.2), fmi2Status::OK);
     fmu.expect_error(fmu.set_real(vr::d, -1e-3), &["`d`", ">= 0"]);
     fmu.expect_error(fmu.set_real(vr::dt_max, 0.0), &["`dt_max`", "> 0"]);
     fmu.expect_error(
@@ -863,6 +868,7 @@ fn bad_values_name_the_variable_and_the_range() {
         &["`elements`", "[2, 100000]"],
     );
     fmu.expect_error(fmu.set_integer(vr::well, 2), &["`well`", "[-1, 1]"]);
+    fmu.expect_error(fmu.set_integer(vr::well, 0), &["`well`", "+1 or -1"]);
     fmu.expect_error(
         fmu.set_real(vr::f_ctrl, f64::NEG_INFINITY),
         &["`f_ctrl`", "-inf"],
