@@ -315,3 +315,47 @@ fn substeps_equal_separate_communication_steps() {
         ));
     }
 }
+
+/// The branch choice with a constant load that breaks the symmetry: the BuckledBeam scene with a
+/// downward dead load q. Below the snap-through load both wells hold a stable equilibrium, the
+/// upper one pushed down (0 < w_mid < the unloaded 0.330), the lower one deeper; past it only the
+/// lower well holds one, and asking for the upper well is refused with a message.
+#[test]
+fn branch_choice_under_a_constant_load() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/BuckledBeam.toml"
+    ))
+    .unwrap()
+    .replace(
+        "[shape]",
+        "[[parameter]]\nname = \"q0\"\nstart = 0.0\n\n[[load]]\nname = \"dead\"\nkind = \
+             \"distributed\"\ndirection = \"-e2\"\nvalue = \"q0\"\n\n[shape]",
+    );
+    let scene = std::sync::Arc::new(georod::scene::Scene::parse(&text, "dead load").unwrap());
+    let build = |q: f64, well: f64| {
+        let values = scene
+            .values_with([("q0", q), ("well", well), ("F", 0.0)])
+            .unwrap();
+        georod::simulation::Simulation::new(scene.clone(), values)
+    };
+    let mut t = Table::new("BuckledBeam with a downward dead load q: the two wells");
+    for q in [0.1, 0.2] {
+        let (up, down) = (build(q, 1.0).unwrap(), build(q, -1.0).unwrap());
+        let (wu, wd) = (output(&up, "w_mid"), output(&down, "w_mid"));
+        let lift = output(&up, "left_Ry") + output(&up, "right_Ry");
+        t.row(format_args!(
+            "  q = {q}: w_mid up {wu:.6}, down {wd:.6}; reactions {lift:.12} = q L {}",
+            q * 10.0
+        ));
+        assert!(0.0 < wu && wu < 0.330, "q = {q}: upper well at {wu}");
+        assert!(wd < -0.330, "q = {q}: lower well at {wd}");
+        assert!((lift - q * 10.0).abs() < 1e-8 * q * 10.0);
+    }
+    let e = build(1.0, 1.0)
+        .err()
+        .expect("no upper equilibrium at q = 1");
+    t.row(format_args!("  q = 1, well = +1: {e}"));
+    assert!(e.to_string().contains("no equilibrium found"), "{e}");
+    assert!(build(1.0, -1.0).is_ok());
+}

@@ -48,41 +48,87 @@ pub fn initial_displacements(
     let probe = setup.sensors[branch.sensor];
     let (dof, _) = scene.sensors[branch.sensor].quantity.dof();
     let sensor = |u: &[f64]| rod.interpolate(u, probe.point, dof);
-    if sensor(&u) * well > 0.0 {
+    let stable = |solver: &StaticSolver| solver.factored_tangent().negative_pivots() == 0;
+    if sensor(&u) * well > 0.0 && stable(&solver) {
         return Ok(u);
     }
-    // The equilibrium found is on the other side or on the symmetric branch. If it is stable,
-    // there is no other (the rod does not buckle at these values); otherwise push it into the
-    // chosen well with a small load at the sensor along its dof, then take the load away.
-    if solver.factored_tangent().negative_pivots() == 0 {
+    // On the symmetric branch (the sensor exactly 0) and stable: the rod does not buckle at
+    // these values, there is no other equilibrium to choose.
+    if sensor(&u) == 0.0 && stable(&solver) {
         return Ok(u);
     }
+    // On the other side, or on an unstable symmetric branch: trace the path again with a load
+    // at the sensor along its dof pushing towards the chosen side, then take that load away.
+    // The load starts small (it must not change the equilibrium it selects) and grows tenfold
+    // while the path ends on the wrong side (the constant loads may push the other way).
     let length = rod.curve.length();
-    let ei = rod.section.ei;
-    let force = IMPERFECTION * 48.0 * ei / (length * length);
-    let size = if dof == 2 {
+    let force = IMPERFECTION * 48.0 * rod.section.ei / (length * length);
+    let unit = if dof == 2 {
         force * length / 4.0
     } else {
         force
     };
-    let mut imperfect = constant.clone();
-    let (na, nb) = probe.point.weights;
-    imperfect[3 * probe.point.element + dof] += well * size * na;
-    imperfect[3 * (probe.point.element + 1) + dof] += well * size * nb;
-    u.fill(0.0);
-    ramp_with(&mut solver, setup, &mut u, &constant, &targets, &imperfect)
-        .map_err(|e| fail("path with a branch-selecting imperfection", e))?;
-    solver
-        .solve(rod, &mut u, &constant)
-        .map_err(|e| fail("equilibrium after removing the imperfection", e.to_string()))?;
-    if sensor(&u) * well <= 0.0 {
-        return Err(SimError::InitialState(format!(
-            "no equilibrium found with the sensor `{}` = {:.4e} of the sign of well = {well}",
-            scene.sensors[branch.sensor].name,
-            sensor(&u)
-        )));
+    let mut last = format!(
+        "the path ended with {} = {:.4e}",
+        scene.sensors[branch.sensor].name,
+        sensor(&u)
+    );
+    for growth in [1.0, 10.0, 100.0] {
+        let size = well * unit * growth;
+        let mut imperfection = vec![0.0; constant.len()];
+        let (na, nb) = probe.point.weights;
+        imperfection[3 * probe.point.element + dof] += size * na;
+        imperfection[3 * (probe.point.element + 1) + dof] += size * nb;
+        u.fill(0.0);
+        if let Err(e) = ramp_with(
+            &mut solver,
+            setup,
+            &mut u,
+            &constant,
+            &targets,
+            &imperfection,
+        ) {
+            last = format!("path with an imperfection of {size:.3e}: {e}");
+            continue;
+        }
+        match unload(&mut solver, rod, &mut u, &constant, &imperfection) {
+            Ok(()) if sensor(&u) * well > 0.0 && stable(&solver) => return Ok(u),
+            Ok(()) => {
+                last =
+                    format!(
+                    "with an imperfection of {size:.3e} the {} equilibrium reached has {} = {:.4e}",
+                    if stable(&solver) { "stable" } else { "unstable" },
+                    scene.sensors[branch.sensor].name,
+                    sensor(&u)
+                )
+            }
+            Err(e) => last = format!("removing an imperfection of {size:.3e}: {e}"),
+        }
     }
-    Ok(u)
+    Err(SimError::InitialState(format!(
+        "no equilibrium found with the sensor `{}` of the sign of well = {well} ({last})",
+        scene.sensors[branch.sensor].name
+    )))
+}
+
+/// Takes the branch-selecting `imperfection` away in equal steps (Newton from each state).
+fn unload(
+    solver: &mut StaticSolver,
+    rod: &Rod,
+    u: &mut [f64],
+    constant: &[f64],
+    imperfection: &[f64],
+) -> Result<(), String> {
+    const STEPS: usize = 10;
+    let mut f = vec![0.0; constant.len()];
+    for k in 1..=STEPS {
+        let left = 1.0 - k as f64 / STEPS as f64;
+        for ((fi, c), p) in f.iter_mut().zip(constant).zip(imperfection) {
+            *fi = c + left * p;
+        }
+        solver.solve(rod, u, &f).map_err(|e| e.to_string())?;
+    }
+    Ok(())
 }
 
 /// Steps the constant loads and the prescribed displacements from 0 to their values.
