@@ -1,0 +1,61 @@
+"""Test scene files (python/tests/scenes/*.toml) packaged into FMUs for a test session.
+
+`package_scene` runs `target/release/georod fmu SCENE.toml -o DIR/SCENE.fmu` (the same command a
+user runs) and extracts the result once. The georod command and library are built with cargo when
+they are missing or older than the Rust sources; a failed build or a refused scene fails the test
+with cargo's or georod's own message (no skips: conftest.py turns any skip into a failure).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import fmpy
+import pytest
+
+from helpers import GEOROD_CLI, RELEASE_DIR, REPO, FmuInfo, run_cmd
+
+SCENE_DIR = Path(__file__).resolve().parent / "scenes"
+GEOROD_LIB = RELEASE_DIR / "libgeorod.so"
+
+
+def _newest_source() -> float:
+    """mtime of the newest Rust source or manifest (what the command and library are built from)."""
+    sources = [*(REPO / "src").rglob("*.rs"), REPO / "Cargo.toml", REPO / "Cargo.lock"]
+    return max(p.stat().st_mtime for p in sources if p.exists())
+
+
+def ensure_georod() -> Path:
+    """target/release/georod and libgeorod.so, built with cargo when missing or stale."""
+    built = [GEOROD_CLI, GEOROD_LIB]
+    if all(p.exists() for p in built) and min(p.stat().st_mtime for p in built) >= _newest_source():
+        return GEOROD_CLI
+    cmd = ["cargo", "build", "--release", "--lib", "--bin", "georod"]
+    try:
+        r = run_cmd(cmd, timeout=1800)
+    except FileNotFoundError as e:
+        pytest.fail(f"{' '.join(cmd)}: cargo not found ({e}); the FMU tests need the Rust build")
+    if r.returncode != 0:
+        pytest.fail(f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stderr[-3000:]}")
+    missing = [str(p) for p in built if not p.exists()]
+    if missing:
+        pytest.fail(f"{' '.join(cmd)} succeeded but did not produce {missing}")
+    return GEOROD_CLI
+
+
+def package_scene(name: str, out_dir: Path) -> FmuInfo:
+    """python/tests/scenes/<name>.toml packaged by `georod fmu` into out_dir and extracted."""
+    scene = SCENE_DIR / f"{name}.toml"
+    if not scene.is_file():
+        pytest.fail(f"scene file {scene} is missing")
+    cli = ensure_georod()
+    fmu = out_dir / f"{name}.fmu"
+    r = run_cmd([cli, "fmu", scene, "-o", fmu, "--lib", GEOROD_LIB], timeout=300)
+    if r.returncode != 0 or not fmu.is_file():
+        pytest.fail(
+            f"georod fmu {scene.name} failed ({r.returncode}):\n"
+            f"{r.stdout[-2000:]}\n{r.stderr[-3000:]}"
+        )
+    unzipdir = Path(fmpy.extract(str(fmu), unzipdir=str(out_dir / name)))
+    md = fmpy.read_model_description(str(unzipdir))
+    return FmuInfo.from_model_description(name, fmu, unzipdir, md)
