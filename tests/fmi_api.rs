@@ -364,9 +364,9 @@ fn exit_initialization_failure_enters_the_error_state() {
     let fmu = Fmu::new(BEAM);
     unsafe {
         assert_eq!(fmi2EnterInitializationMode(fmu.c), fmi2Status::OK);
-        // In range on its own, but more than half the span: no buckled equilibrium in the
-        // well, found at exit.
-        assert_eq!(fmu.set_real(vr::pre_shortening, 6.0), fmi2Status::OK);
+        // In range on its own, but far more than the rod's length: no buckled equilibrium in
+        // the well, found at exit.
+        assert_eq!(fmu.set_real(vr::pre_shortening, 1000.0), fmi2Status::OK);
         let s = fmi2ExitInitializationMode(fmu.c);
         fmu.expect_error(
             s,
@@ -383,7 +383,7 @@ fn exit_initialization_failure_enters_the_error_state() {
         );
         assert_eq!(
             fmu.real(vr::pre_shortening),
-            6.0,
+            1000.0,
             "parameters stay readable"
         );
         assert_eq!(fmi2Reset(fmu.c), fmi2Status::OK);
