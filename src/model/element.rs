@@ -324,8 +324,9 @@ pub fn cayley(dw: f64) -> f64 {
     2.0 * (0.5 * dw).tan()
 }
 
-/// Consistent mass and damping coefficients of one element (two Gauss points integrate
-/// `N^T N` exactly): the `[[2, 1], [1, 2]] * l / 6` pattern, scaled.
+/// Mass and damping coefficients of one element: the consistent pattern (two Gauss points
+/// integrate `N^T N` exactly) `[[2, 1], [1, 2]] * l / 6`, or the lumped one `[[3, 0], [0, 3]] *
+/// l / 6` (see `Rod::with_lumped_mass`), scaled per dof kind.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ElementInertia {
     /// `rho A l / 6` on `u1`, `u2`.
@@ -334,6 +335,8 @@ pub struct ElementInertia {
     pub rotational: f64,
     /// `d l / 6` on `u1`, `u2`.
     pub damping: f64,
+    /// `d_w l / 6` on `w` (0: the model damps translations only).
+    pub rotational_damping: f64,
 }
 
 impl ElementInertia {
@@ -342,13 +345,14 @@ impl ElementInertia {
             translational: section.rho_a * length / 6.0,
             rotational: section.rho_i * length / 6.0,
             damping: damping * length / 6.0,
+            rotational_damping: 0.0,
         }
     }
 
     /// Per-dof-kind coefficients `(u1, u2, w)` of the mass (or damping if `damping`).
     pub fn coefficients(&self, damping: bool) -> Vector3<f64> {
         if damping {
-            Vector3::new(self.damping, self.damping, 0.0)
+            Vector3::new(self.damping, self.damping, self.rotational_damping)
         } else {
             Vector3::new(self.translational, self.translational, self.rotational)
         }

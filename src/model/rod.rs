@@ -32,6 +32,8 @@ pub struct Rod {
     pub node_s: Vec<f64>,
     /// Constrained (fixed or prescribed) dofs, per global dof.
     pub fixed: Vec<bool>,
+    /// Lumped (diagonal) instead of consistent mass and damping matrices.
+    pub lumped: bool,
 }
 
 impl Rod {
@@ -59,7 +61,24 @@ impl Rod {
             inertia: vec![ElementInertia::new(&section, damping, length); n],
             node_s,
             fixed: vec![false; 3 * (n + 1)],
+            lumped: false,
         }
+    }
+
+    /// The same rod with lumped (diagonal, row-sum) mass and damping matrices instead of the
+    /// consistent ones: an option for studies, not the model of the specification.
+    pub fn with_lumped_mass(mut self) -> Rod {
+        self.lumped = true;
+        self
+    }
+
+    /// The same rod with a viscous damping `d_w` per unit length on the rotations too (the
+    /// model damps translations only): an option for studies.
+    pub fn with_rotational_damping(mut self, d_w: f64) -> Rod {
+        for (m, el) in self.inertia.iter_mut().zip(&self.elements) {
+            m.rotational_damping = d_w * el.length / 6.0;
+        }
+        self
     }
 
     pub fn nodes(&self) -> usize {
@@ -96,6 +115,9 @@ impl Rod {
     ) -> f64 {
         let c = self.inertia[e].coefficients(damping)[k];
         let (a, b) = (x[3 * e + k], x[3 * e + 3 + k]);
+        if self.lumped {
+            return 3.0 * c * if offset == 0 { a } else { b };
+        }
         c * if offset == 0 {
             2.0 * a + b
         } else {
@@ -186,18 +208,28 @@ impl Rod {
     /// `jac += scale * M`.
     pub fn add_mass(&self, jac: &mut BlockTridiagonal, scale: f64) {
         for (e, m) in self.inertia.iter().enumerate() {
-            jac.add_element_pattern(e, &m.coefficients(false), scale);
+            jac.add_element_pattern(e, &m.coefficients(false), scale, self.lumped);
         }
     }
 
     /// `jac += scale * C` (damping).
     pub fn add_damping(&self, jac: &mut BlockTridiagonal, scale: f64) {
         for (e, m) in self.inertia.iter().enumerate() {
-            jac.add_element_pattern(e, &m.coefficients(true), scale);
+            jac.add_element_pattern(e, &m.coefficients(true), scale, self.lumped);
         }
     }
 
     fn add_pattern_times(&self, x: &[f64], out: &mut [f64], scale: f64, damping: bool) {
+        if self.lumped {
+            for (e, m) in self.inertia.iter().enumerate() {
+                let c = m.coefficients(damping) * (3.0 * scale);
+                for k in 0..3 {
+                    out[3 * e + k] += c[k] * x[3 * e + k];
+                    out[3 * e + 3 + k] += c[k] * x[3 * e + 3 + k];
+                }
+            }
+            return;
+        }
         for (e, m) in self.inertia.iter().enumerate() {
             let c = m.coefficients(damping) * scale;
             for k in 0..3 {
@@ -226,25 +258,26 @@ impl Rod {
 
     /// `v^T M v / 2`.
     pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
-        let mut e = 0.0;
-        for (el, m) in self.inertia.iter().enumerate() {
-            let c = m.coefficients(false);
-            for k in 0..3 {
-                let (a, b) = (v[3 * el + k], v[3 * el + 3 + k]);
-                e += c[k] * (a * a + a * b + b * b);
-            }
-        }
-        e
+        0.5 * self.pattern_form(v, false)
     }
 
     /// `v^T C v` (power dissipated by the damping).
     pub fn dissipation_rate(&self, v: &[f64]) -> f64 {
+        self.pattern_form(v, true)
+    }
+
+    /// `v^T M v` (or `v^T C v`), element by element.
+    fn pattern_form(&self, v: &[f64], damping: bool) -> f64 {
         let mut p = 0.0;
         for (el, m) in self.inertia.iter().enumerate() {
-            let c = m.coefficients(true);
-            for k in 0..2 {
+            let c = m.coefficients(damping);
+            for k in 0..3 {
                 let (a, b) = (v[3 * el + k], v[3 * el + 3 + k]);
-                p += 2.0 * c[k] * (a * a + a * b + b * b);
+                p += if self.lumped {
+                    3.0 * c[k] * (a * a + b * b)
+                } else {
+                    2.0 * c[k] * (a * a + a * b + b * b)
+                };
             }
         }
         p

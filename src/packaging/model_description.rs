@@ -1,8 +1,8 @@
 //! modelDescription.xml of a scene (FMI 2.0 Co-Simulation).
 //!
 //! The document lists the scene's variables in [`variables`] order; the `ModelStructure`
-//! indices are 1-based positions in `ModelVariables`. The GUID is a hash of the document itself
-//! (with the `guid` attribute blank), so it changes exactly when the interface changes. The FMU
+//! indices are 1-based positions in `ModelVariables`. The GUID is a hash of the document (with
+//! the `guid` attribute blank) and of the scene file, so it changes with either. The FMU
 //! binary builds the same document from the scene file it finds in `resources/` and compares
 //! GUIDs: an altered scene file is refused at instantiation.
 use crate::scene::variables::{self, Causality, Variable};
@@ -263,7 +263,9 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
     let _ = writeln!(w, "  </ModelStructure>");
     let _ = writeln!(w, "</fmiModelDescription>");
 
-    let guid = guid_text(fnv1a_128(x.as_bytes()));
+    // The GUID covers the document and the scene file (model options and comments included):
+    // any change of either makes another FMU.
+    let guid = guid_text(fnv1a_128(format!("{x}\n{}", scene.source).as_bytes()));
     let xml = x.replacen(r#"guid="""#, &format!(r#"guid="{guid}""#), 1);
     ModelDescription { xml, guid }
 }

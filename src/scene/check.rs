@@ -193,6 +193,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         }
     };
     let initial = initial(&c, &raw, &sensors, &params)?;
+    let model = model(&c, &raw)?;
 
     let scene = Scene {
         name,
@@ -206,6 +207,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         inputs,
         shape_points,
         initial,
+        model,
         source: text.to_string(),
     };
     if let Err((key, message)) = variables::check_names(&scene) {
@@ -664,6 +666,29 @@ fn initial(
         }
     };
     Ok(Initial { state, branch })
+}
+
+fn model(c: &Checker, raw: &SceneFile) -> Result<super::ModelOptions, SceneError> {
+    let mut m = super::ModelOptions::default();
+    let Some(f) = raw.model.as_ref() else {
+        return Ok(m);
+    };
+    if let Some(mass) = f.mass.as_deref() {
+        m.lumped_mass = c.one_of(mass, &["consistent", "lumped"], "model.mass")? == 1;
+    }
+    if let Some(k) = f.shear_factor {
+        if !(k.is_finite() && k > 0.0) {
+            return c.err("model.shear_factor", format!("{k} is out of range: must be > 0"));
+        }
+        m.shear_factor = k;
+    }
+    if let Some(d) = f.rotational_damping {
+        if !(d.is_finite() && d >= 0.0) {
+            return c.err("model.rotational_damping", format!("{d} is out of range: must be >= 0"));
+        }
+        m.rotational_damping = d;
+    }
+    Ok(m)
 }
 
 /// The rigid-body motion the supports leave free, if any: the held dofs must see all three

@@ -24,6 +24,16 @@ pub struct SceneFile {
     pub sensor: Vec<SensorFile>,
     pub shape: Option<ShapeFile>,
     pub initial: Option<InitialFile>,
+    pub model: Option<ModelFile>,
+}
+
+/// Departures from the specified model, for studies.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct ModelFile {
+    pub mass: Option<String>,
+    pub shear_factor: Option<f64>,
+    pub rotational_damping: Option<f64>,
 }
 
 #[derive(Deserialize, Debug)]

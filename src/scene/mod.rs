@@ -192,6 +192,27 @@ pub struct Input {
     pub description: String,
 }
 
+/// Departures from the specified model (`[model]`), for studies; the defaults are the model.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelOptions {
+    /// Lumped (diagonal) instead of consistent mass and damping matrices.
+    pub lumped_mass: bool,
+    /// `GA` is multiplied by this (1: no shear correction factor).
+    pub shear_factor: f64,
+    /// Viscous damping per unit length on the rotations (0: translations only).
+    pub rotational_damping: f64,
+}
+
+impl Default for ModelOptions {
+    fn default() -> Self {
+        ModelOptions {
+            lumped_mass: false,
+            shear_factor: 1.0,
+            rotational_damping: 0.0,
+        }
+    }
+}
+
 /// A checked scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
@@ -209,6 +230,7 @@ pub struct Scene {
     /// Number of shape samples (0: none).
     pub shape_points: usize,
     pub initial: Initial,
+    pub model: ModelOptions,
     /// The file's text, exactly as read (what an FMU carries in `resources/`).
     pub source: String,
 }

@@ -50,15 +50,23 @@ pub fn curve(scene: &Scene, values: &ParamValues) -> ReferenceCurve {
 
 /// Meshes the scene. The values must have passed [`Scene::check`] (supports on nodes).
 pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
-    let section = Section::rectangular(
+    let mut section = Section::rectangular(
         values.std(Std::E),
         values.std(Std::Nu),
         values.std(Std::Rho),
         values.std(Std::Width),
         values.std(Std::Height),
     );
+    let model = scene.model;
+    section.ga *= model.shear_factor;
     let n = values.elements();
     let mut rod = Rod::new(curve(scene, values), section, values.std(Std::Damping), n);
+    if model.lumped_mass {
+        rod = rod.with_lumped_mass();
+    }
+    if model.rotational_damping > 0.0 {
+        rod = rod.with_rotational_damping(model.rotational_damping);
+    }
     let length = rod.curve.length();
     let mut support_nodes = Vec::new();
     let mut held = Vec::new();

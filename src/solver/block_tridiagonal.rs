@@ -74,10 +74,16 @@ impl BlockTridiagonal {
     }
 
     /// Adds `scale * [[2 c, c], [c, 2 c]]` per dof kind (`coeffs = (c_u1, c_u2, c_w)`), the
-    /// pattern of the consistent mass and damping matrices of element `e`.
-    pub fn add_element_pattern(&mut self, e: usize, coeffs: &Vector3<f64>, scale: f64) {
+    /// pattern of the consistent mass and damping matrices of element `e`, or with `lumped`
+    /// `scale * [[3 c, 0], [0, 3 c]]`.
+    pub fn add_element_pattern(&mut self, e: usize, coeffs: &Vector3<f64>, scale: f64, lumped: bool) {
         debug_assert!(!self.factored);
         let d = Matrix3::from_diagonal(&(coeffs * scale));
+        if lumped {
+            self.diag[e] += 3.0 * d;
+            self.diag[e + 1] += 3.0 * d;
+            return;
+        }
         self.diag[e] += 2.0 * d;
         self.diag[e + 1] += 2.0 * d;
         self.upper[e] += d;
