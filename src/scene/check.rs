@@ -1,25 +1,27 @@
 //! From a scene file's text to a checked [`Scene`]: types and key names (serde), then every
 //! value, every name and every reference, then the mechanics that can be judged without
 //! solving anything (supports that leave a rigid-body motion free, supports off the mesh).
-use super::file::{LoadFile, ParameterFile, SceneFile, SensorFile, SupportFile};
+use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::variables;
+use super::{items, variables};
 use super::{
-    Branch, DefaultExperiment, Direction, Geometry, Initial, InitialState, Input, InputKind, Load,
-    LoadKind, Quantity, Scene, SceneError, Sensor, Slot, Support, TimeLaw, DOF_NAMES,
+    Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor, Slot,
 };
-use std::collections::BTreeSet;
 
 /// Default shape samples when `[shape]` is absent.
 const DEFAULT_SHAPE_POINTS: usize = 21;
 const MAX_SHAPE_POINTS: usize = 10_000;
 
-struct Checker<'a> {
-    file: &'a str,
+pub(super) struct Checker<'a> {
+    pub(super) file: &'a str,
 }
 
 impl Checker<'_> {
-    fn err<T>(&self, key: impl Into<String>, message: impl Into<String>) -> Result<T, SceneError> {
+    pub(super) fn err<T>(
+        &self,
+        key: impl Into<String>,
+        message: impl Into<String>,
+    ) -> Result<T, SceneError> {
         Err(SceneError {
             file: self.file.to_string(),
             key: key.into(),
@@ -27,7 +29,12 @@ impl Checker<'_> {
         })
     }
 
-    fn required<T>(&self, value: Option<T>, key: &str, what: &str) -> Result<T, SceneError> {
+    pub(super) fn required<T>(
+        &self,
+        value: Option<T>,
+        key: &str,
+        what: &str,
+    ) -> Result<T, SceneError> {
         match value {
             Some(v) => Ok(v),
             None => self.err(key, format!("missing: {what}")),
@@ -35,7 +42,11 @@ impl Checker<'_> {
     }
 
     /// A name usable as an FMI variable or model identifier: a C identifier.
-    fn identifier(&self, name: Option<&String>, key: &str) -> Result<String, SceneError> {
+    pub(super) fn identifier(
+        &self,
+        name: Option<&String>,
+        key: &str,
+    ) -> Result<String, SceneError> {
         let name = self.required(name, key, "a name (a C identifier: letters, digits, _)")?;
         let mut chars = name.chars();
         let ok = chars
@@ -51,7 +62,7 @@ impl Checker<'_> {
         Ok(name.clone())
     }
 
-    fn station(&self, at: Option<f64>, key: &str) -> Result<f64, SceneError> {
+    pub(super) fn station(&self, at: Option<f64>, key: &str) -> Result<f64, SceneError> {
         let at = self.required(at, key, "a station: a fraction of the arc length in [0, 1]")?;
         if !(0.0..=1.0).contains(&at) {
             return self.err(
@@ -62,7 +73,12 @@ impl Checker<'_> {
         Ok(at)
     }
 
-    fn one_of(&self, value: &str, allowed: &[&str], key: &str) -> Result<usize, SceneError> {
+    pub(super) fn one_of(
+        &self,
+        value: &str,
+        allowed: &[&str],
+        key: &str,
+    ) -> Result<usize, SceneError> {
         match allowed.iter().position(|a| *a == value) {
             Some(i) => Ok(i),
             None => self.err(
@@ -76,7 +92,12 @@ impl Checker<'_> {
     }
 
     /// A value slot: a number, a parameter name, or `-name`.
-    fn slot(&self, value: &toml::Value, params: &[Param], key: &str) -> Result<Slot, SceneError> {
+    pub(super) fn slot(
+        &self,
+        value: &toml::Value,
+        params: &[Param],
+        key: &str,
+    ) -> Result<Slot, SceneError> {
         match value {
             toml::Value::Float(x) if x.is_finite() => Ok(Slot::Number(*x)),
             toml::Value::Integer(i) => Ok(Slot::Number(*i as f64)),
@@ -108,7 +129,7 @@ impl Checker<'_> {
     }
 }
 
-fn quoted(items: &[&str]) -> String {
+pub(super) fn quoted(items: &[&str]) -> String {
     items
         .iter()
         .map(|s| format!("\"{s}\""))
@@ -116,7 +137,7 @@ fn quoted(items: &[&str]) -> String {
         .join(", ")
 }
 
-fn entry(table: &str, index: usize, name: Option<&String>, key: &str) -> String {
+pub(super) fn entry(table: &str, index: usize, name: Option<&String>, key: &str) -> String {
     match name {
         Some(n) => format!("[[{table}]] #{} \"{n}\", key `{key}`", index + 1),
         None => format!("[[{table}]] #{}, key `{key}`", index + 1),
@@ -171,13 +192,13 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     }
 
     let mut inputs = Vec::new();
-    let supports = supports(&c, &raw.support, &params, &mut inputs)?;
-    let loads = loads(&c, &raw.load, &mut params, &mut inputs)?;
+    let supports = items::supports(&c, &raw.support, &params, &mut inputs)?;
+    let loads = items::loads(&c, &raw.load, &mut params, &mut inputs)?;
     let sensors = raw
         .sensor
         .iter()
         .enumerate()
-        .map(|(i, s)| sensor(&c, i, s))
+        .map(|(i, s)| items::sensor(&c, i, s))
         .collect::<Result<Vec<_>, _>>()?;
     let shape_points = match raw.shape.as_ref().map(|s| s.points) {
         None => DEFAULT_SHAPE_POINTS,
@@ -371,246 +392,6 @@ fn scene_parameter(
     Ok(param)
 }
 
-fn supports(
-    c: &Checker,
-    raw: &[SupportFile],
-    params: &[Param],
-    inputs: &mut Vec<Input>,
-) -> Result<Vec<Support>, SceneError> {
-    let mut out: Vec<Support> = Vec::new();
-    for (i, s) in raw.iter().enumerate() {
-        let key = |k: &str| entry("support", i, s.name.as_ref(), k);
-        let name = c.identifier(s.name.as_ref(), &key("name"))?;
-        let at = c.station(s.at, &key("at"))?;
-        if let Some(other) = out.iter().find(|o| (o.at - at).abs() < 1e-12) {
-            return c.err(
-                key("at"),
-                format!(
-                    "support `{}` is already at {at}: hold both sets of dofs in one support",
-                    other.name
-                ),
-            );
-        }
-        let fix = c.required(
-            s.fix.as_ref(),
-            &key("fix"),
-            "the held dofs, a subset of [\"u1\", \"u2\", \"w\"]",
-        )?;
-        let mut fixed = [false; 3];
-        for dof in fix {
-            let k = c.one_of(dof, &DOF_NAMES, &key("fix"))?;
-            if fixed[k] {
-                return c.err(key("fix"), format!("\"{dof}\" is listed twice"));
-            }
-            fixed[k] = true;
-        }
-        if !fixed.iter().any(|&f| f) {
-            return c.err(
-                key("fix"),
-                "a support must hold at least one dof of u1, u2, w",
-            );
-        }
-        let mut displace = [Slot::Number(0.0); 3];
-        for (dof, value) in &s.displace {
-            let k = c.one_of(dof, &DOF_NAMES, &key("displace"))?;
-            if !fixed[k] {
-                return c.err(
-                    key("displace"),
-                    format!("\"{dof}\" is not held by this support (add it to `fix`)"),
-                );
-            }
-            let slot = c.slot(value, params, &key(&format!("displace.{dof}")))?;
-            if let Slot::Param { index, .. } = slot {
-                if params[index].variability != Variability::Fixed {
-                    return c.err(
-                        key(&format!("displace.{dof}")),
-                        format!(
-                            "parameter `{}` is tunable: a prescribed displacement must not jump \
-                             during a run (make it fixed, or use motion = \"input\")",
-                            params[index].name
-                        ),
-                    );
-                }
-            }
-            displace[k] = slot;
-        }
-        let motion = match s.motion.as_deref() {
-            None | Some("none") => false,
-            Some(m) => c.one_of(m, &["none", "input"], &key("motion"))? == 1,
-        };
-        let index = out.len();
-        if motion {
-            for dof in (0..3).filter(|&k| fixed[k]) {
-                inputs.push(Input {
-                    name: format!("{name}_{}", DOF_NAMES[dof]),
-                    kind: InputKind::Motion {
-                        support: index,
-                        dof,
-                    },
-                    start: displace[dof],
-                    unit: Some(if dof == 2 { "rad" } else { "m" }.to_string()),
-                    description: format!(
-                        "Prescribed {} of support {name}: reached at the end of each communication \
-                         step, linearly from its value at the start",
-                        ["displacement u1", "displacement u2", "rotation w"][dof]
-                    ),
-                });
-            }
-        }
-        out.push(Support {
-            name,
-            at,
-            fixed,
-            displace,
-            motion,
-        });
-    }
-    Ok(out)
-}
-
-fn loads(
-    c: &Checker,
-    raw: &[LoadFile],
-    params: &mut [Param],
-    inputs: &mut Vec<Input>,
-) -> Result<Vec<Load>, SceneError> {
-    let mut out = Vec::new();
-    let mut f_units = BTreeSet::new();
-    for (i, l) in raw.iter().enumerate() {
-        let key = |k: &str| entry("load", i, l.name.as_ref(), k);
-        let name = c.identifier(l.name.as_ref(), &key("name"))?;
-        let kind_name = c.required(
-            l.kind.as_deref(),
-            &key("kind"),
-            "\"point\" or \"distributed\"",
-        )?;
-        let kind = match c.one_of(kind_name, &["point", "distributed"], &key("kind"))? {
-            0 => LoadKind::Point {
-                at: c.station(l.at, &key("at"))?,
-            },
-            _ if l.at.is_some() => {
-                return c.err(
-                    key("at"),
-                    "a distributed load acts on the whole rod: no `at`",
-                )
-            }
-            _ => LoadKind::Distributed,
-        };
-        let unit = if matches!(kind, LoadKind::Point { .. }) {
-            "N"
-        } else {
-            "N/m"
-        };
-        let dir = c.required(
-            l.direction.as_deref(),
-            &key("direction"),
-            "\"e1\", \"e2\", \"-e1\" or \"-e2\"",
-        )?;
-        let d = c.one_of(dir, &["e1", "e2", "-e1", "-e2"], &key("direction"))?;
-        let direction = Direction {
-            component: d % 2,
-            sign: if d < 2 { 1.0 } else { -1.0 },
-        };
-        let time_name = l.time.as_deref().unwrap_or("constant");
-        let time_kind = c.one_of(time_name, &["constant", "harmonic", "input"], &key("time"))?;
-        if time_kind != 2 && l.start.is_some() {
-            return c.err(
-                key("start"),
-                "only an input load (time = \"input\") has a start value",
-            );
-        }
-        let (value, time) = match time_kind {
-            0 => {
-                let v = c.required(
-                    l.value.as_ref(),
-                    &key("value"),
-                    "a number, a parameter name, or -name",
-                )?;
-                (c.slot(v, params, &key("value"))?, TimeLaw::Constant)
-            }
-            1 => {
-                let default = toml::Value::String("F".into());
-                let slot = c.slot(l.value.as_ref().unwrap_or(&default), params, &key("value"))?;
-                if let Slot::Param { index, .. } = slot {
-                    if params[index].name == "F" {
-                        f_units.insert(unit);
-                    }
-                }
-                (slot, TimeLaw::Harmonic)
-            }
-            _ => {
-                if l.value.is_some() {
-                    return c.err(
-                        key("value"),
-                        "the magnitude of an input load is the FMI input itself (give its start value with `start`)",
-                    );
-                }
-                let start = l.start.unwrap_or(0.0);
-                if !start.is_finite() {
-                    return c.err(key("start"), "must be finite");
-                }
-                inputs.push(Input {
-                    name: name.clone(),
-                    kind: InputKind::Load(out.len()),
-                    start: Slot::Number(start),
-                    unit: Some(unit.to_string()),
-                    description: if l.description.trim().is_empty() {
-                        format!(
-                            "{} load along {dir}{}, held over each communication step",
-                            if unit == "N" { "Point" } else { "Distributed" },
-                            match kind {
-                                LoadKind::Point { at } => format!(" at {at} of the length"),
-                                LoadKind::Distributed => String::new(),
-                            }
-                        )
-                    } else {
-                        l.description.trim().to_string()
-                    },
-                });
-                (Slot::Number(1.0), TimeLaw::Input(inputs.len() - 1))
-            }
-        };
-        out.push(Load {
-            name,
-            kind,
-            direction,
-            value,
-            time,
-        });
-    }
-    if f_units.len() == 1 {
-        if let Some(f) = params.iter_mut().find(|p| p.name == "F") {
-            f.unit = f_units.first().map(|u| u.to_string());
-        }
-    }
-    Ok(out)
-}
-
-fn sensor(c: &Checker, i: usize, s: &SensorFile) -> Result<Sensor, SceneError> {
-    let key = |k: &str| entry("sensor", i, s.name.as_ref(), k);
-    let name = c.identifier(s.name.as_ref(), &key("name"))?;
-    let at = c.station(s.at, &key("at"))?;
-    let q = c.required(
-        s.quantity.as_deref(),
-        &key("quantity"),
-        "one of u1, u2, w, v1, v2, vw",
-    )?;
-    let quantity = [
-        Quantity::U1,
-        Quantity::U2,
-        Quantity::W,
-        Quantity::V1,
-        Quantity::V2,
-        Quantity::Vw,
-    ][c.one_of(q, &Quantity::NAMES, &key("quantity"))?];
-    Ok(Sensor {
-        name,
-        at,
-        quantity,
-        description: s.description.trim().to_string(),
-    })
-}
-
 fn initial(
     c: &Checker,
     raw: &SceneFile,
@@ -678,13 +459,19 @@ fn model(c: &Checker, raw: &SceneFile) -> Result<super::ModelOptions, SceneError
     }
     if let Some(k) = f.shear_factor {
         if !(k.is_finite() && k > 0.0) {
-            return c.err("model.shear_factor", format!("{k} is out of range: must be > 0"));
+            return c.err(
+                "model.shear_factor",
+                format!("{k} is out of range: must be > 0"),
+            );
         }
         m.shear_factor = k;
     }
     if let Some(d) = f.rotational_damping {
         if !(d.is_finite() && d >= 0.0) {
-            return c.err("model.rotational_damping", format!("{d} is out of range: must be >= 0"));
+            return c.err(
+                "model.rotational_damping",
+                format!("{d} is out of range: must be >= 0"),
+            );
         }
         m.rotational_damping = d;
     }

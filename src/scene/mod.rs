@@ -7,6 +7,7 @@
 //! through it.
 mod check;
 mod file;
+mod items;
 pub mod params;
 pub mod variables;
 

@@ -76,7 +76,13 @@ impl BlockTridiagonal {
     /// Adds `scale * [[2 c, c], [c, 2 c]]` per dof kind (`coeffs = (c_u1, c_u2, c_w)`), the
     /// pattern of the consistent mass and damping matrices of element `e`, or with `lumped`
     /// `scale * [[3 c, 0], [0, 3 c]]`.
-    pub fn add_element_pattern(&mut self, e: usize, coeffs: &Vector3<f64>, scale: f64, lumped: bool) {
+    pub fn add_element_pattern(
+        &mut self,
+        e: usize,
+        coeffs: &Vector3<f64>,
+        scale: f64,
+        lumped: bool,
+    ) {
         debug_assert!(!self.factored);
         let d = Matrix3::from_diagonal(&(coeffs * scale));
         if lumped {

@@ -1,0 +1,250 @@
+//! Checks of the scene's items: `[[support]]`, `[[load]]` (which also declare the scene's
+//! inputs) and `[[sensor]]`.
+use super::check::{entry, Checker};
+use super::file::{LoadFile, SensorFile, SupportFile};
+use super::params::{Param, Variability};
+use super::{
+    Direction, Input, InputKind, Load, LoadKind, Quantity, SceneError, Sensor, Slot, Support,
+    TimeLaw, DOF_NAMES,
+};
+use std::collections::BTreeSet;
+
+pub(super) fn supports(
+    c: &Checker,
+    raw: &[SupportFile],
+    params: &[Param],
+    inputs: &mut Vec<Input>,
+) -> Result<Vec<Support>, SceneError> {
+    let mut out: Vec<Support> = Vec::new();
+    for (i, s) in raw.iter().enumerate() {
+        let key = |k: &str| entry("support", i, s.name.as_ref(), k);
+        let name = c.identifier(s.name.as_ref(), &key("name"))?;
+        let at = c.station(s.at, &key("at"))?;
+        if let Some(other) = out.iter().find(|o| (o.at - at).abs() < 1e-12) {
+            return c.err(
+                key("at"),
+                format!(
+                    "support `{}` is already at {at}: hold both sets of dofs in one support",
+                    other.name
+                ),
+            );
+        }
+        let fix = c.required(
+            s.fix.as_ref(),
+            &key("fix"),
+            "the held dofs, a subset of [\"u1\", \"u2\", \"w\"]",
+        )?;
+        let mut fixed = [false; 3];
+        for dof in fix {
+            let k = c.one_of(dof, &DOF_NAMES, &key("fix"))?;
+            if fixed[k] {
+                return c.err(key("fix"), format!("\"{dof}\" is listed twice"));
+            }
+            fixed[k] = true;
+        }
+        if !fixed.iter().any(|&f| f) {
+            return c.err(
+                key("fix"),
+                "a support must hold at least one dof of u1, u2, w",
+            );
+        }
+        let mut displace = [Slot::Number(0.0); 3];
+        for (dof, value) in &s.displace {
+            let k = c.one_of(dof, &DOF_NAMES, &key("displace"))?;
+            if !fixed[k] {
+                return c.err(
+                    key("displace"),
+                    format!("\"{dof}\" is not held by this support (add it to `fix`)"),
+                );
+            }
+            let slot = c.slot(value, params, &key(&format!("displace.{dof}")))?;
+            if let Slot::Param { index, .. } = slot {
+                if params[index].variability != Variability::Fixed {
+                    return c.err(
+                        key(&format!("displace.{dof}")),
+                        format!(
+                            "parameter `{}` is tunable: a prescribed displacement must not jump \
+                             during a run (make it fixed, or use motion = \"input\")",
+                            params[index].name
+                        ),
+                    );
+                }
+            }
+            displace[k] = slot;
+        }
+        let motion = match s.motion.as_deref() {
+            None | Some("none") => false,
+            Some(m) => c.one_of(m, &["none", "input"], &key("motion"))? == 1,
+        };
+        let index = out.len();
+        if motion {
+            for dof in (0..3).filter(|&k| fixed[k]) {
+                inputs.push(Input {
+                    name: format!("{name}_{}", DOF_NAMES[dof]),
+                    kind: InputKind::Motion {
+                        support: index,
+                        dof,
+                    },
+                    start: displace[dof],
+                    unit: Some(if dof == 2 { "rad" } else { "m" }.to_string()),
+                    description: format!(
+                        "Prescribed {} of support {name}: reached at the end of each communication \
+                         step, linearly from its value at the start",
+                        ["displacement u1", "displacement u2", "rotation w"][dof]
+                    ),
+                });
+            }
+        }
+        out.push(Support {
+            name,
+            at,
+            fixed,
+            displace,
+            motion,
+        });
+    }
+    Ok(out)
+}
+
+pub(super) fn loads(
+    c: &Checker,
+    raw: &[LoadFile],
+    params: &mut [Param],
+    inputs: &mut Vec<Input>,
+) -> Result<Vec<Load>, SceneError> {
+    let mut out = Vec::new();
+    let mut f_units = BTreeSet::new();
+    for (i, l) in raw.iter().enumerate() {
+        let key = |k: &str| entry("load", i, l.name.as_ref(), k);
+        let name = c.identifier(l.name.as_ref(), &key("name"))?;
+        let kind_name = c.required(
+            l.kind.as_deref(),
+            &key("kind"),
+            "\"point\" or \"distributed\"",
+        )?;
+        let kind = match c.one_of(kind_name, &["point", "distributed"], &key("kind"))? {
+            0 => LoadKind::Point {
+                at: c.station(l.at, &key("at"))?,
+            },
+            _ if l.at.is_some() => {
+                return c.err(
+                    key("at"),
+                    "a distributed load acts on the whole rod: no `at`",
+                )
+            }
+            _ => LoadKind::Distributed,
+        };
+        let unit = if matches!(kind, LoadKind::Point { .. }) {
+            "N"
+        } else {
+            "N/m"
+        };
+        let dir = c.required(
+            l.direction.as_deref(),
+            &key("direction"),
+            "\"e1\", \"e2\", \"-e1\" or \"-e2\"",
+        )?;
+        let d = c.one_of(dir, &["e1", "e2", "-e1", "-e2"], &key("direction"))?;
+        let direction = Direction {
+            component: d % 2,
+            sign: if d < 2 { 1.0 } else { -1.0 },
+        };
+        let time_name = l.time.as_deref().unwrap_or("constant");
+        let time_kind = c.one_of(time_name, &["constant", "harmonic", "input"], &key("time"))?;
+        if time_kind != 2 && l.start.is_some() {
+            return c.err(
+                key("start"),
+                "only an input load (time = \"input\") has a start value",
+            );
+        }
+        let (value, time) = match time_kind {
+            0 => {
+                let v = c.required(
+                    l.value.as_ref(),
+                    &key("value"),
+                    "a number, a parameter name, or -name",
+                )?;
+                (c.slot(v, params, &key("value"))?, TimeLaw::Constant)
+            }
+            1 => {
+                let default = toml::Value::String("F".into());
+                let slot = c.slot(l.value.as_ref().unwrap_or(&default), params, &key("value"))?;
+                if let Slot::Param { index, .. } = slot {
+                    if params[index].name == "F" {
+                        f_units.insert(unit);
+                    }
+                }
+                (slot, TimeLaw::Harmonic)
+            }
+            _ => {
+                if l.value.is_some() {
+                    return c.err(
+                        key("value"),
+                        "the magnitude of an input load is the FMI input itself (give its start value with `start`)",
+                    );
+                }
+                let start = l.start.unwrap_or(0.0);
+                if !start.is_finite() {
+                    return c.err(key("start"), "must be finite");
+                }
+                inputs.push(Input {
+                    name: name.clone(),
+                    kind: InputKind::Load(out.len()),
+                    start: Slot::Number(start),
+                    unit: Some(unit.to_string()),
+                    description: if l.description.trim().is_empty() {
+                        format!(
+                            "{} load along {dir}{}, held over each communication step",
+                            if unit == "N" { "Point" } else { "Distributed" },
+                            match kind {
+                                LoadKind::Point { at } => format!(" at {at} of the length"),
+                                LoadKind::Distributed => String::new(),
+                            }
+                        )
+                    } else {
+                        l.description.trim().to_string()
+                    },
+                });
+                (Slot::Number(1.0), TimeLaw::Input(inputs.len() - 1))
+            }
+        };
+        out.push(Load {
+            name,
+            kind,
+            direction,
+            value,
+            time,
+        });
+    }
+    if f_units.len() == 1 {
+        if let Some(f) = params.iter_mut().find(|p| p.name == "F") {
+            f.unit = f_units.first().map(|u| u.to_string());
+        }
+    }
+    Ok(out)
+}
+
+pub(super) fn sensor(c: &Checker, i: usize, s: &SensorFile) -> Result<Sensor, SceneError> {
+    let key = |k: &str| entry("sensor", i, s.name.as_ref(), k);
+    let name = c.identifier(s.name.as_ref(), &key("name"))?;
+    let at = c.station(s.at, &key("at"))?;
+    let q = c.required(
+        s.quantity.as_deref(),
+        &key("quantity"),
+        "one of u1, u2, w, v1, v2, vw",
+    )?;
+    let quantity = [
+        Quantity::U1,
+        Quantity::U2,
+        Quantity::W,
+        Quantity::V1,
+        Quantity::V2,
+        Quantity::Vw,
+    ][c.one_of(q, &Quantity::NAMES, &key("quantity"))?];
+    Ok(Sensor {
+        name,
+        at,
+        quantity,
+        description: s.description.trim().to_string(),
+    })
+}
