@@ -196,3 +196,31 @@ def test_animate_writes_a_gif(examples: dict[str, FmuInfo], tmp_path: Path) -> N
     assert (tmp_path / "cantilever.gif.json").is_file()
     again = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert again.returncode == 2 and "--overwrite" in again.stderr
+
+
+def test_support_follows_input_derivatives(examples: dict[str, FmuInfo]) -> None:
+    """canInterpolateInputs: the derivatives set for a support input define its path over the
+    step (from where it is); orders other than 1 and 2, and outputs, are refused."""
+    info = examples["BeamOnBase"]
+    assert info.md.coSimulation.canInterpolateInputs
+    log = LogCapture()
+    slave = instantiate(info, log=log)
+    a, h = 20.0, 1e-3
+    try:
+        vrs = [info.vr["left_u2"], info.vr["right_u2"]]
+        for k in range(10):
+            t = k * h
+            slave.setRealInputDerivatives(vrs, [1, 1], [a * t, a * t])
+            slave.setRealInputDerivatives(vrs, [2, 2], [a, a])
+            slave.doStep(t, h)
+        y_left = slave.getReal([info.vr["shape_y[1]"]])[0]
+        g = 0.5 * a * (10 * h) ** 2
+        assert abs(y_left - g) <= 1e-12 * g, (y_left, g)
+        with pytest.raises(FMICallException):
+            slave.setRealInputDerivatives(vrs[:1], [3], [1.0])
+        assert "orders 1 and 2" in log.messages()[-1]
+        with pytest.raises(FMICallException):
+            slave.setRealInputDerivatives([info.vr["w_mid"]], [1], [1.0])
+        assert "not an input" in log.messages()[-1]
+    finally:
+        release(slave)

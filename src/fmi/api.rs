@@ -547,14 +547,18 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 #[no_mangle]
 pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
     c: fmi2Component,
-    _vr: *const fmi2ValueReference,
-    _nvr: usize,
-    _order: *const fmi2Integer,
-    _value: *const fmi2Real,
+    vr: *const fmi2ValueReference,
+    nvr: usize,
+    order: *const fmi2Integer,
+    value: *const fmi2Real,
 ) -> fmi2Status {
     with_instance(c, "fmi2SetRealInputDerivatives", |inst| {
         inst.require(mask::SET_INPUT_DERIVATIVES)?;
-        error("input derivatives are not supported (canInterpolateInputs=false): inputs are held over a step")
+        inst.set_input_derivatives(
+            input(vr, nvr, "vr[]")?,
+            input(order, nvr, "order[]")?,
+            input(value, nvr, "value[]")?,
+        )
     })
 }
 

@@ -173,6 +173,9 @@ pub struct Instance {
     params: ParamValues,
     /// The inputs the host set (`None`: the start value).
     inputs: Vec<Option<f64>>,
+    /// Input derivatives for the next step (`fmi2SetRealInputDerivatives`): (input, order,
+    /// value); cleared by a successful step.
+    derivatives: Vec<(usize, usize, f64)>,
     /// From `fmi2ExitInitializationMode` on: the running simulation. Before: possibly the initial
     /// state built for an early output request, at `t = 0`, reused if the parameters still fit.
     sim: Option<Simulation>,
@@ -192,6 +195,7 @@ impl Instance {
             log,
             params: interface.scene.defaults(),
             inputs: vec![None; interface.scene.inputs.len()],
+            derivatives: Vec::new(),
             interface,
             state: FmiState::Instantiated,
             resource_location,
@@ -365,6 +369,7 @@ impl Instance {
         self.require(mask::ANY)?;
         self.params = self.scene().defaults();
         self.inputs.fill(None);
+        self.derivatives.clear();
         self.experiment = Experiment::default();
         if let Some(sim) = &mut self.sim {
             sim.reset();
@@ -404,6 +409,40 @@ impl Instance {
             }
         }
         Ok(sim)
+    }
+
+    /// `fmi2SetRealInputDerivatives`: derivatives of inputs for the next step (orders 1 and 2).
+    pub fn set_input_derivatives(
+        &mut self,
+        vrs: &[u32],
+        orders: &[i32],
+        values: &[f64],
+    ) -> FmiResult {
+        self.require(mask::SET_INPUT_DERIVATIVES)?;
+        let mut set = Vec::with_capacity(vrs.len());
+        for ((&vr, &order), &value) in vrs.iter().zip(orders).zip(values) {
+            let Some(var) = self.interface.by_vr(vr) else {
+                return error(format!("unknown value reference {vr}"));
+            };
+            let crate::scene::variables::Role::Input(i) = var.role else {
+                return error(format!("`{}` (vr {vr}) is not an input", var.name));
+            };
+            if !(1..=2).contains(&order) {
+                return error(format!(
+                    "`{}`: derivative order {order}: this FMU interpolates with orders 1 and 2",
+                    var.name
+                ));
+            }
+            if !value.is_finite() {
+                return error(format!("`{}`: derivative {value} is not finite", var.name));
+            }
+            set.push((i, order as usize, value));
+        }
+        for d in set {
+            self.derivatives.retain(|&(i, o, _)| (i, o) != (d.0, d.1));
+            self.derivatives.push(d);
+        }
+        Ok(())
     }
 
     pub(crate) fn simulation_mut(&mut self) -> Option<&mut Simulation> {
@@ -473,8 +512,13 @@ impl Instance {
             sim.set_input(i, x)
                 .map_err(|e| Failure::Error(e.to_string()))?;
         }
+        for &(i, order, x) in &self.derivatives {
+            sim.set_input_derivative(i, order, x)
+                .map_err(|e| Failure::Error(e.to_string()))?;
+        }
         match sim.advance_checked(h) {
             Ok(report) => {
+                self.derivatives.clear();
                 self.log.trace(|| {
                     format!(
                         "fmi2DoStep: t = {t:e} -> {:e}: {} sub-steps, {} Newton iterations, {} cuts",
@@ -630,6 +674,7 @@ impl Instance {
         self.experiment = data.experiment.clone();
         self.params = data.params.clone();
         self.inputs.clone_from(&data.inputs);
+        self.derivatives.clear();
         self.enter(data.fmi_state);
         self.log
             .event(|| format!("FMU state restored at t = {}", self.time()));

@@ -122,8 +122,11 @@ pub struct Simulation {
     prescribed: Vec<(usize, f64)>,
     /// Start and target of each moving held dof over the current communication step, and its
     /// speed.
-    motion_path: Vec<(f64, f64)>,
+    motion_path: Vec<supports::MotionPath>,
     motion_speeds: Vec<f64>,
+    /// Derivatives (first, second) of each input at the next communication point, if the host
+    /// gave them: the input then follows their polynomial over the step.
+    input_derivatives: Vec<Option<[f64; 2]>>,
     motion: Option<MotionSolver>,
 }
 
@@ -177,8 +180,9 @@ impl Simulation {
             trial_impulses: vec![[0.0; 3]; static_reactions.len()],
             static_reactions,
             prescribed: Vec::with_capacity(moving),
-            motion_path: vec![(0.0, 0.0); moving],
+            motion_path: vec![supports::MotionPath::default(); moving],
             motion_speeds: vec![0.0; moving],
+            input_derivatives: vec![None; scene.inputs.len()],
             motion,
             next_inputs: inputs.clone(),
             inputs,
@@ -234,6 +238,37 @@ impl Simulation {
             )));
         }
         self.next_inputs[i] = value;
+        self.loads_stale = true;
+        Ok(())
+    }
+
+    /// Sets the `order`-th time derivative (1 or 2) of input `i` at the next communication
+    /// point: over the next step the input follows the polynomial they define (a load input
+    /// from its value set, a support motion from where the support is). Cleared by a
+    /// successful step.
+    pub fn set_input_derivative(
+        &mut self,
+        i: usize,
+        order: usize,
+        value: f64,
+    ) -> Result<(), SimError> {
+        let Some(input) = self.scene.inputs.get(i) else {
+            return Err(SimError::BadArgument(format!("no input {i}")));
+        };
+        if !(1..=2).contains(&order) {
+            return Err(SimError::BadArgument(format!(
+                "input `{}`: derivative order {order}: orders 1 and 2 are supported",
+                input.name
+            )));
+        }
+        if !value.is_finite() {
+            return Err(SimError::BadArgument(format!(
+                "input `{}`: derivative {value} is not finite",
+                input.name
+            )));
+        }
+        let d = self.input_derivatives[i].get_or_insert([0.0; 2]);
+        d[order - 1] = value;
         self.loads_stale = true;
         Ok(())
     }
@@ -325,6 +360,10 @@ impl Simulation {
                     self.clock.count += substeps as u64;
                     self.last_newton_iterations = newton_iterations;
                     self.inputs.copy_from_slice(&self.next_inputs);
+                    if self.input_derivatives.iter().any(Option::is_some) {
+                        self.input_derivatives.fill(None);
+                        self.loads_stale = true;
+                    }
                     for (r, j) in self.reactions.iter_mut().zip(&self.trial_impulses) {
                         *r = j.map(|x| x / h);
                     }
@@ -371,6 +410,7 @@ impl Simulation {
         for k in 0..substeps {
             let t_k = clock.at(k as u64);
             self.motion_increments(k, substeps);
+            self.interpolate_load_inputs((k as f64 + 0.5) * dt);
             let s = &self.setup;
             let stats = self
                 .integrator
@@ -382,8 +422,8 @@ impl Simulation {
         }
         // Moving supports end the step exactly at their targets (not a sum of increments).
         let moving = self.setup.held.iter().filter(|h| h.input.is_some());
-        for (h, &(_, target)) in moving.zip(&self.motion_path) {
-            self.trial.u[h.dof] = target;
+        for (h, path) in moving.zip(&self.motion_path) {
+            self.trial.u[h.dof] = path.position(1.0);
         }
         self.check_trial()
             .map_err(|what| format!("a non-finite {what} after the step"))?;

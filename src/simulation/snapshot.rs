@@ -189,6 +189,7 @@ impl Simulation {
         self.state.v.copy_from_slice(&s.velocities);
         self.inputs.copy_from_slice(&s.inputs);
         self.next_inputs.copy_from_slice(&s.inputs);
+        self.input_derivatives.fill(None);
         self.loads_stale = true;
         self.reactions.copy_from_slice(&s.reactions);
         self.clock = s.clock;
@@ -210,6 +211,7 @@ impl Simulation {
             .map(|i| crate::scene::variables::input_start(&self.scene, i, &self.values))
             .collect();
         self.next_inputs.clone_from(&self.inputs);
+        self.input_derivatives.fill(None);
         self.loads_stale = true;
         self.energy = EnergyLedger {
             initial_energy: self.setup.rod.strain_energy(&self.initial.u),

@@ -10,6 +10,39 @@
 use super::setup::{Held, Setup};
 use super::snapshot::EnergyLedger;
 use super::Simulation;
+
+/// The path of a moving held dof over one communication step of length `h`: linear from
+/// `start` to `end` (the value set for its input), or, when the host gave the input's
+/// derivatives, their polynomial from where the support is: `start + d1 t + d2 t^2 / 2`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct MotionPath {
+    start: f64,
+    end: f64,
+    derivatives: Option<[f64; 2]>,
+    h: f64,
+}
+
+impl MotionPath {
+    /// The position after the fraction `f` (0..=1) of the step.
+    pub fn position(&self, f: f64) -> f64 {
+        match self.derivatives {
+            None if f == 1.0 => self.end,
+            None => self.start + (self.end - self.start) * f,
+            Some([d1, d2]) => {
+                let t = f * self.h;
+                self.start + d1 * t + 0.5 * d2 * t * t
+            }
+        }
+    }
+
+    /// The speed at the start of the step.
+    pub fn initial_speed(&self) -> f64 {
+        match self.derivatives {
+            None => (self.end - self.start) / self.h,
+            Some([d1, _]) => d1,
+        }
+    }
+}
 use crate::integrator::{DynamicState, Midpoint};
 use crate::model::Rod;
 use crate::solver::BlockTridiagonal;
@@ -134,8 +167,13 @@ impl Simulation {
             .iter_mut()
             .zip(self.motion_speeds.iter_mut());
         for ((dof, input), (path, speed)) in moving.zip(paths) {
-            *path = (self.trial.u[dof], self.next_inputs[input]);
-            *speed = (path.1 - path.0) / h;
+            *path = MotionPath {
+                start: self.trial.u[dof],
+                end: self.next_inputs[input],
+                derivatives: self.input_derivatives[input],
+                h,
+            };
+            *speed = path.initial_speed();
         }
         motion.change_speeds(
             &self.setup.rod,
@@ -154,15 +192,29 @@ impl Simulation {
         }
         self.prescribed.clear();
         let moving = self.setup.held.iter().filter(|h| h.input.is_some());
-        for (h, &(a, b)) in moving.zip(&self.motion_path) {
-            let at = |j: usize| {
-                if j == n {
-                    b
-                } else {
-                    a + (b - a) * (j as f64 / n as f64)
-                }
-            };
+        for (h, path) in moving.zip(&self.motion_path) {
+            let at = |j: usize| path.position(j as f64 / n as f64);
             self.prescribed.push((h.dof, at(k + 1) - at(k)));
+        }
+    }
+
+    /// Load inputs with derivatives follow their polynomial over the step: their magnitudes at
+    /// the sub-step's midpoint `t` (from the start of the step) rebuild the load set.
+    pub(super) fn interpolate_load_inputs(&mut self, t: f64) {
+        if !self.input_derivatives.iter().any(Option::is_some) {
+            return;
+        }
+        let mut changed = false;
+        for (l, m) in self.scene.loads.iter().zip(self.magnitudes.iter_mut()) {
+            if let crate::scene::TimeLaw::Input(i) = l.time {
+                if let Some([d1, d2]) = self.input_derivatives[i] {
+                    *m = self.next_inputs[i] + d1 * t + 0.5 * d2 * t * t;
+                    changed = true;
+                }
+            }
+        }
+        if changed {
+            self.setup.loads.set_magnitudes(&self.magnitudes);
         }
     }
 }
