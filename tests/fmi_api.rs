@@ -314,9 +314,22 @@ fn forbidden_call_orders() {
             fmi2GetDirectionalDerivative(c, null(), 0, null(), 0, null(), null_mut()),
             &["not supported"],
         );
+        // Input derivatives (canInterpolateInputs="true"): orders 1 and 2 of an input only.
         fmu.expect_error(
-            fmi2SetRealInputDerivatives(c, &vr::f_ctrl, 1, &1, &1.0),
-            &["canInterpolateInputs=false"],
+            fmi2SetRealInputDerivatives(c, &vr::f_ctrl, 1, &3, &1.0),
+            &["`f_ctrl`", "derivative order 3"],
+        );
+        fmu.expect_error(
+            fmi2SetRealInputDerivatives(c, &vr::w_mid, 1, &1, &1.0),
+            &["`w_mid`", "not an input"],
+        );
+        fmu.expect_error(
+            fmi2SetRealInputDerivatives(c, &vr::f_ctrl, 1, &1, &f64::NAN),
+            &["`f_ctrl`", "not finite"],
+        );
+        assert_eq!(
+            fmi2SetRealInputDerivatives(c, &vr::f_ctrl, 1, &1, &0.0),
+            fmi2Status::OK
         );
         fmu.expect_error(
             fmi2GetRealOutputDerivatives(c, &vr::w_mid, 1, &1, &mut x),

@@ -181,10 +181,17 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// The library `georod fmu` ships: the cdylib of this build.
+/// The library `georod fmu` ships: the cdylib of this build. `cargo test` leaves it in
+/// `deps/` beside the binary (only `cargo build` copies it up), so that copy is the fresh one.
 fn library() -> PathBuf {
     let exe = PathBuf::from(env!("CARGO_BIN_EXE_georod"));
-    exe.with_file_name(format!("libgeorod{}", std::env::consts::DLL_SUFFIX))
+    let name = format!("libgeorod{}", std::env::consts::DLL_SUFFIX);
+    let in_deps = exe.with_file_name("deps").join(&name);
+    if in_deps.is_file() {
+        in_deps
+    } else {
+        exe.with_file_name(name)
+    }
 }
 
 #[test]
