@@ -39,10 +39,10 @@ from pathlib import Path
 import numpy as np
 
 MAGIC = b"GEOROD\x00S"
-FORMAT_VERSION = 4
+FORMAT_VERSION = 5
 CRC_AT = 12  # offset of the CRC-32 (u32) in the prefix
 PREFIX_LEN = 24  # magic, version, CRC-32, length
-SNAPSHOT_VERSION = 3
+SNAPSHOT_VERSION = 4
 DOFS_PER_NODE = 3
 DOF_NAMES = ("u1", "u2", "w")
 
@@ -185,6 +185,11 @@ def decode_state(blob: bytes) -> DecodedState:
     r.f64()  # clock.origin
     r.f64()  # clock.step
     r.u64()  # clock.count
+    if r.u8() == 1:  # Lyapunov tangent vectors and growth
+        r.f64_vec()
+        r.f64_vec()
+        r.f64_vec()
+        r.f64()
     if r.pos != len(r.data):
         raise StateFormatError(f"{len(r.data) - r.pos} unexpected trailing bytes")
     dofs = DOFS_PER_NODE * (elements + 1)
@@ -259,4 +264,5 @@ def build_state(
     out += struct.pack("<I", 0)  # last_newton_iterations
     out += struct.pack("<ddddd", 0.0, 0.0, 0.0, 0.0, 0.0)  # energy ledger
     out += struct.pack("<ddQ", time, 0.0, 0)  # clock: origin = time, no sub-steps counted
+    out += b"\x00"  # no Lyapunov data
     return sign(bytes(out))

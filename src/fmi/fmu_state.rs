@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 /// First bytes of every serialized state.
 pub const SERIAL_MAGIC: [u8; 8] = *b"GEOROD\x00S";
 /// Layout version; bump it when the layout or the fields change.
-pub const SERIAL_VERSION: u32 = 4;
+pub const SERIAL_VERSION: u32 = 5;
 /// Where the CRC-32 sits, and the length of the fixed prefix.
 const CRC_AT: usize = 12;
 const LENGTH_AT: usize = 16;

@@ -132,5 +132,29 @@ fn snapshot(s: &Snapshot, scene: &Scene, elements: usize) -> Result<(), String> 
     all_finite("parameter value", &s.values)?;
     all_finite("input", &s.inputs)?;
     let reactions: Vec<f64> = s.reactions.iter().flatten().copied().collect();
-    all_finite("reaction", &reactions)
+    all_finite("reaction", &reactions)?;
+    lyapunov(s, scene, dofs)
+}
+
+/// The tangent vectors belong to `lyapunov` exponents of this rod; every number finite.
+fn lyapunov(s: &Snapshot, scene: &Scene, dofs: usize) -> Result<(), String> {
+    let k = scene
+        .param_index(crate::scene::params::LYAPUNOV)
+        .map_or(0.0, |i| s.values[i]) as usize;
+    match &s.lyapunov {
+        None if k == 0 => Ok(()),
+        Some(l) if l.log_growth.len() == k && l.du.len() == k * dofs && l.dv.len() == k * dofs => {
+            all_finite("tangent vector", &l.du)?;
+            all_finite("tangent vector", &l.dv)?;
+            all_finite("Lyapunov growth", &l.log_growth)?;
+            finite("Lyapunov time", l.counted_time)?;
+            if l.counted_time < 0.0 {
+                return Err(format!("Lyapunov time {} < 0", l.counted_time));
+            }
+            Ok(())
+        }
+        _ => Err(format!(
+            "the Lyapunov data does not match lyapunov_count = {k} exponents of {dofs} dofs"
+        )),
+    }
 }

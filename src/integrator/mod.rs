@@ -3,6 +3,7 @@ pub mod continuation;
 pub mod midpoint;
 pub mod newton;
 pub mod statics;
+pub mod tangent;
 
 pub use midpoint::{DynamicState, Midpoint, Scheme};
 pub use newton::{NewtonFailure, NewtonSettings, NewtonStats};

@@ -320,6 +320,58 @@ const BRANCH: Standard = Standard {
     range: Range::between(-1.0, 1.0),
 };
 
+pub const LYAPUNOV: &str = "lyapunov_count";
+pub const LYAPUNOV_START: &str = "lyapunov_start";
+pub const LYAPUNOV_ALIGN: &str = "lyapunov_align";
+pub const PERTURBATION: &str = "perturbation";
+
+/// Analysis parameters of every scene (after the scene's other standard parameters): Lyapunov
+/// exponents from the tangent map of the midpoint rule, and a kick for twin-trajectory checks.
+const ANALYSIS: [Standard; 4] = [
+    Standard {
+        name: LYAPUNOV,
+        vr: 16,
+        var_type: VarType::Integer,
+        variability: Variability::Fixed,
+        unit: None,
+        description: "Number of leading Lyapunov exponents to estimate from the exact tangent \
+                      map of the midpoint rule (0: none; needs integrator = 1)",
+        start: 0.0,
+        range: Range::between(0.0, crate::integrator::tangent::MAX_EXPONENTS as f64),
+    },
+    real(
+        LYAPUNOV_START,
+        17,
+        "s",
+        "Time from which the tangent vectors of the Lyapunov exponents are advanced (before \
+         it they cost nothing)",
+        0.0,
+        Range::at_least(0.0),
+    ),
+    real(
+        LYAPUNOV_ALIGN,
+        19,
+        "s",
+        "Time after lyapunov_start during which the tangent vectors only align with the \
+         leading directions; the exponents average their growth after it",
+        0.0,
+        Range::at_least(0.0),
+    ),
+    Standard {
+        name: PERTURBATION,
+        vr: 18,
+        var_type: VarType::Real,
+        variability: Variability::Tunable,
+        unit: Some("m"),
+        description: "Kick for twin-trajectory checks: a change of this value by D displaces the \
+                      state (u, v/Omega) by D along a fixed seeded unit direction over the free \
+                      dofs, at the start of the next step (the start value displaces the \
+                      initial state)",
+        start: 0.0,
+        range: Range::ANY,
+    },
+];
+
 /// Indices of the parameters every scene has, in [`ParamValues`] and the scene's table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Std {
@@ -344,6 +396,7 @@ pub fn is_standard_name(name: &str) -> bool {
         .iter()
         .chain(&HARMONIC)
         .chain([&RISE, &BRANCH])
+        .chain(&ANALYSIS)
         .any(|s| s.name == name)
 }
 
@@ -379,12 +432,16 @@ pub fn standard_params(needs: &Needs) -> Vec<Param> {
     if needs.branch {
         params.push(param_of(&BRANCH));
     }
+    params.extend(ANALYSIS.iter().map(param_of));
     params
 }
 
 /// The names of the standard parameters a `[defaults]` table may set.
 pub fn default_settable(name: &str) -> bool {
-    ALWAYS.iter().chain(&HARMONIC).any(|s| s.name == name) && name != "L"
+    (ALWAYS.iter().chain(&HARMONIC).any(|s| s.name == name) && name != "L")
+        || name == LYAPUNOV
+        || name == LYAPUNOV_START
+        || name == LYAPUNOV_ALIGN
 }
 
 /// The current values of a scene's parameters, indexed like its parameter table.

@@ -120,6 +120,14 @@ pub enum OutputId {
     },
     ShapeX(usize),
     ShapeY(usize),
+    /// The running estimate of Lyapunov exponent `index` (0-based), per second or (with
+    /// `per_period`) per forcing period.
+    Lyapunov {
+        index: usize,
+        per_period: bool,
+    },
+    /// The time the Lyapunov exponents average over.
+    LyapunovTime,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -146,6 +154,9 @@ pub struct Variable {
     pub declared_type: Option<&'static str>,
 }
 
+const LYAPUNOV_VR: u32 = 40;
+const LYAPUNOV_PER_PERIOD_VR: u32 = 44;
+const LYAPUNOV_TIME_VR: u32 = 48;
 const INPUT_VR: u32 = 1_000;
 const SENSOR_VR: u32 = 2_000;
 const REACTION_VR: u32 = 3_000;
@@ -232,6 +243,7 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
         }
         vars.push(v);
     }
+    vars.extend(lyapunov_outputs(scene));
     for (i, s) in scene.sensors.iter().enumerate() {
         let (dof, velocity) = s.quantity.dof();
         let unit = match (dof, velocity) {
@@ -320,6 +332,54 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
     vars
 }
 
+/// `lyapunov[i]` (1/s), with a harmonic load `lyapunov_per_period[i]`, and `lyapunov_time`.
+fn lyapunov_outputs(scene: &Scene) -> Vec<Variable> {
+    let k = crate::integrator::tangent::MAX_EXPONENTS;
+    let mut vars = Vec::new();
+    for i in 0..k {
+        vars.push(output(
+            format!("lyapunov[{}]", i + 1),
+            LYAPUNOV_VR + i as u32,
+            Some("1/s"),
+            format!(
+                "Lyapunov exponent {} (in decreasing order) per second: the growth of the tangent \
+                 vectors averaged since lyapunov_start (0 unless lyapunov_count >= {})",
+                i + 1,
+                i + 1
+            ),
+            OutputId::Lyapunov {
+                index: i,
+                per_period: false,
+            },
+        ));
+    }
+    if scene.param_index("Omega").is_some() {
+        for i in 0..k {
+            vars.push(output(
+                format!("lyapunov_per_period[{}]", i + 1),
+                LYAPUNOV_PER_PERIOD_VR + i as u32,
+                Some("1"),
+                format!(
+                    "Lyapunov exponent {} per forcing period 2 pi / Omega (0 when Omega = 0)",
+                    i + 1
+                ),
+                OutputId::Lyapunov {
+                    index: i,
+                    per_period: true,
+                },
+            ));
+        }
+    }
+    vars.push(output(
+        "lyapunov_time".to_string(),
+        LYAPUNOV_TIME_VR,
+        Some("s"),
+        "Time the Lyapunov exponents average over (since lyapunov_start)".to_string(),
+        OutputId::LyapunovTime,
+    ));
+    vars
+}
+
 /// Every name an FMU variable of this scene would get must be unique; a clash is reported with
 /// the scene key that makes it.
 pub fn check_names(scene: &Scene) -> Result<(), (String, String)> {
@@ -362,7 +422,13 @@ pub fn check_names(scene: &Scene) -> Result<(), (String, String)> {
             claim(l.name.clone(), format!("[[load]] {}", l.name))?;
         }
     }
-    for n in ["shape_x", "shape_y"] {
+    for n in [
+        "shape_x",
+        "shape_y",
+        "lyapunov",
+        "lyapunov_per_period",
+        "lyapunov_time",
+    ] {
         claim(n.to_string(), "the shape outputs".to_string())?;
     }
     let _ = DOF_NAMES;

@@ -6,12 +6,14 @@
 //! - [`supports`]: moving supports, speed changes as impulses, reactions;
 //! - [`outputs`]: sensors, shape, reactions and energies by output id;
 //! - [`snapshot`]: clock, energy ledger and snapshots for exact restarts.
+mod analysis;
 pub mod initial;
 pub mod outputs;
 pub mod setup;
 pub mod snapshot;
 pub mod supports;
 
+pub use analysis::LyapunovSnapshot;
 pub use snapshot::{Clock, EnergyLedger, Snapshot, SNAPSHOT_VERSION};
 
 use crate::integrator::{DynamicState, Midpoint, NewtonFailure, Scheme};
@@ -128,6 +130,8 @@ pub struct Simulation {
     /// gave them: the input then follows their polynomial over the step.
     input_derivatives: Vec<Option<[f64; 2]>>,
     motion: Option<MotionSolver>,
+    /// Lyapunov exponents and the `perturbation` kick.
+    analysis: analysis::Analysis,
 }
 
 impl Simulation {
@@ -142,7 +146,7 @@ impl Simulation {
         setup::load_magnitudes(&scene, &values, &inputs, &mut magnitudes);
         setup.loads.set_magnitudes(&magnitudes);
         setup.loads.frequency = scene.param_index("Omega").map_or(0.0, |i| values.get(i));
-        let initial =
+        let mut initial =
             DynamicState::at_rest(initial::initial_displacements(&scene, &values, &setup)?);
         let static_reactions = supports::static_reactions(&setup, &initial.u);
         let mut integrator = Midpoint::new(&setup.rod);
@@ -153,6 +157,8 @@ impl Simulation {
         } else {
             Scheme::Midpoint
         };
+        let analysis =
+            analysis::Analysis::new(&scene, &values, &setup, integrator.scheme, &mut initial)?;
         let energy = EnergyLedger {
             initial_energy: setup.rod.strain_energy(&initial.u),
             ..EnergyLedger::default()
@@ -184,6 +190,7 @@ impl Simulation {
             motion_speeds: vec![0.0; moving],
             input_derivatives: vec![None; scene.inputs.len()],
             motion,
+            analysis,
             next_inputs: inputs.clone(),
             inputs,
             values,
@@ -354,6 +361,7 @@ impl Simulation {
             match self.try_substeps(h, substeps, check_energies) {
                 Ok((newton_iterations, factorizations, energies)) => {
                     std::mem::swap(&mut self.state, &mut self.trial);
+                    self.analysis.commit(&self.values);
                     self.energies.set(energies);
                     self.energy = self.trial_energy;
                     self.clock = self.clock.with_step(h / substeps as f64);
@@ -401,6 +409,8 @@ impl Simulation {
         check_energies: bool,
     ) -> Result<Attempt, String> {
         self.trial.copy_from(&self.state);
+        self.analysis
+            .begin(&self.setup, &self.values, &mut self.trial);
         self.trial_energy = self.energy;
         self.trial_impulses.iter_mut().for_each(|j| *j = [0.0; 3]);
         self.start_motion(h);
@@ -411,6 +421,7 @@ impl Simulation {
             let t_k = clock.at(k as u64);
             self.motion_increments(k, substeps);
             self.interpolate_load_inputs((k as f64 + 0.5) * dt);
+            self.integrator.linearize = self.analysis.linearizes(t_k);
             let s = &self.setup;
             let stats = self
                 .integrator
@@ -418,6 +429,7 @@ impl Simulation {
                 .map_err(|e: NewtonFailure| e.to_string())?;
             iterations += stats.iterations;
             factorizations += stats.factorizations;
+            self.analysis.substep(s, &self.integrator, t_k, dt);
             self.book(t_k + 0.5 * dt, dt);
         }
         // Moving supports end the step exactly at their targets (not a sum of increments).

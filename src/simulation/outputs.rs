@@ -22,6 +22,10 @@ impl Simulation {
             OutputId::Reaction { support, component } => self.reactions()[support][component],
             OutputId::ShapeX(i) => self.shape_point(i)[0],
             OutputId::ShapeY(i) => self.shape_point(i)[1],
+            OutputId::Lyapunov { index, per_period } => self
+                .analysis
+                .exponent(index, per_period.then_some(self.setup().loads.frequency)),
+            OutputId::LyapunovTime => self.analysis.counted_time(),
         }
     }
 
@@ -109,6 +113,9 @@ impl Simulation {
         }
         if !self.trial_impulses.iter().flatten().all(|x| x.is_finite()) {
             return Err("reaction");
+        }
+        if !self.analysis.trial_is_finite() {
+            return Err("Lyapunov tangent vector");
         }
         Ok(())
     }

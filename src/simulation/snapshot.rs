@@ -5,7 +5,7 @@ use crate::scene::Variability;
 use serde::{Deserialize, Serialize};
 
 /// Version of [`Snapshot`]'s layout; bump it when the fields change.
-pub const SNAPSHOT_VERSION: u32 = 3;
+pub const SNAPSHOT_VERSION: u32 = 4;
 
 /// Simulation time as a step counter (model: `t_n = n dt`, not a running sum): while
 /// communication steps keep the same sub-step `step`, sub-step `n` starts at
@@ -103,6 +103,8 @@ pub struct Snapshot {
     pub last_newton_iterations: u32,
     pub energy: EnergyLedger,
     pub clock: Clock,
+    /// Tangent vectors and growth of the Lyapunov exponents (when `lyapunov` > 0).
+    pub lyapunov: Option<super::analysis::LyapunovSnapshot>,
 }
 
 impl Simulation {
@@ -120,6 +122,7 @@ impl Simulation {
             last_newton_iterations: self.last_newton_iterations,
             energy: self.energy,
             clock: self.clock,
+            lyapunov: self.analysis.snapshot(),
         }
     }
 
@@ -169,6 +172,9 @@ impl Simulation {
         {
             return bad("non-finite values".to_string());
         }
+        self.analysis
+            .check(s.lyapunov.as_ref())
+            .map_err(SimError::BadSnapshot)?;
         let mut values = self.values.clone();
         for (i, &x) in s.values.iter().enumerate() {
             let p = &self.scene.params[i];
@@ -196,6 +202,7 @@ impl Simulation {
         self.last_newton_iterations = s.last_newton_iterations;
         self.energy = s.energy;
         self.energies.set(None);
+        self.analysis.restore(&self.values, s.lyapunov.as_ref());
         Ok(())
     }
 
@@ -221,5 +228,6 @@ impl Simulation {
         self.energies.set(Some((0.0, self.energy.initial_energy)));
         self.clock = Clock::start();
         self.last_newton_iterations = 0;
+        self.analysis.reset(&self.values);
     }
 }

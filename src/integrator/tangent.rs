@@ -1,0 +1,229 @@
+//! Lyapunov exponents from the exact tangent map of the midpoint rule.
+//!
+//! A midpoint step is a map `z_n = (u_n, v_n) -> z_(n+1)` defined by `R(du; u_n, v_n) = 0` with
+//! `R = M (2/dt^2 du - 2/dt v_n) + C du/dt + f_int(u_n + du/2) - f_ext`. Differentiating at the
+//! converged step, with `J = dR/d(du) = A + K/2`, `A = 2/dt^2 M + C/dt`, `K` the tangent
+//! stiffness at the midpoint:
+//!
+//! `J d(du) = -K du_n + 2/dt M dv_n`, and `K = 2 (J - A)` gives
+//! `du_(n+1) = J^-1 (2 A du_n + 2/dt M dv_n) - du_n`, `dv_(n+1) = 2/dt (du_(n+1) - du_n) - dv_n`:
+//!
+//! one solve with the step's factored Jacobian per tangent vector, no product with `K`. Held
+//! dofs are not part of the state (their motion is prescribed): their components stay zero.
+//!
+//! `k` tangent vectors are advanced together and re-orthonormalized after every sub-step
+//! (modified Gram-Schmidt, i.e. a QR decomposition, in the norm
+//! `|z|^2 = |du|^2 + tau^2 |dv|^2`); the logarithms of the diagonal of `R` summed over time are
+//! the leading `k` exponents times the time (Benettin et al.). Renormalizing every sub-step
+//! keeps the vectors bounded whatever the communication step, and makes the estimate
+//! independent of how sub-steps are grouped into communication steps.
+use super::Midpoint;
+use crate::model::Rod;
+
+/// The most exponents one simulation estimates.
+pub const MAX_EXPONENTS: usize = 4;
+
+/// `k` tangent vectors and their accumulated growth. Plain data: copying it restores it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Lyapunov {
+    /// Displacement and velocity parts of the vectors, `k` blocks of `dofs` each.
+    du: Vec<f64>,
+    dv: Vec<f64>,
+    /// Weight of the velocities in the norm (a time).
+    tau: f64,
+    /// Sub-steps starting at or after this time count towards the exponents.
+    count_from: f64,
+    /// Sum of `ln |R_jj|` over the counted sub-steps, per exponent.
+    log_growth: Vec<f64>,
+    /// Time covered by the counted sub-steps.
+    counted_time: f64,
+}
+
+/// Scratch for [`Lyapunov::advance`] (two vectors of `dofs`), kept by the caller so that a
+/// step allocates nothing.
+#[derive(Clone, Debug)]
+pub struct TangentScratch {
+    rhs: Vec<f64>,
+    x: Vec<f64>,
+}
+
+impl TangentScratch {
+    pub fn new(dofs: usize) -> TangentScratch {
+        TangentScratch {
+            rhs: vec![0.0; dofs],
+            x: vec![0.0; dofs],
+        }
+    }
+}
+
+/// A deterministic pseudo-random direction over the free dofs (splitmix64), unit in the norm
+/// with weight `tau`: the same for every run of the same rod.
+pub fn seeded_direction(rod: &Rod, seed: u64, tau: f64) -> (Vec<f64>, Vec<f64>) {
+    let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0xD1B5_4A32_D192_ED03;
+    let mut next = || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let n = rod.dofs();
+    let mut du: Vec<f64> = (0..n).map(|_| next()).collect();
+    let mut dv: Vec<f64> = (0..n).map(|_| next() / tau).collect();
+    rod.zero_constrained(&mut du);
+    rod.zero_constrained(&mut dv);
+    let norm = weighted_norm(&du, &dv, tau);
+    du.iter_mut().chain(dv.iter_mut()).for_each(|x| *x /= norm);
+    (du, dv)
+}
+
+fn weighted_norm(du: &[f64], dv: &[f64], tau: f64) -> f64 {
+    weighted_dot(du, dv, du, dv, tau).sqrt()
+}
+
+fn weighted_dot(au: &[f64], av: &[f64], bu: &[f64], bv: &[f64], tau: f64) -> f64 {
+    let u: f64 = au.iter().zip(bu).map(|(a, b)| a * b).sum();
+    let v: f64 = av.iter().zip(bv).map(|(a, b)| a * b).sum();
+    u + tau * tau * v
+}
+
+impl Lyapunov {
+    /// `k` (1..=[`MAX_EXPONENTS`]) orthonormal vectors from seeded directions; the growth
+    /// counts from time `count_from` on; `tau` weighs the velocities in the norm.
+    pub fn new(rod: &Rod, k: usize, tau: f64, count_from: f64) -> Lyapunov {
+        assert!((1..=MAX_EXPONENTS).contains(&k) && tau > 0.0);
+        let n = rod.dofs();
+        let mut l = Lyapunov {
+            du: Vec::with_capacity(k * n),
+            dv: Vec::with_capacity(k * n),
+            tau,
+            count_from,
+            log_growth: vec![0.0; k],
+            counted_time: 0.0,
+        };
+        for j in 0..k {
+            let (du, dv) = seeded_direction(rod, j as u64 + 1, tau);
+            l.du.extend(du);
+            l.dv.extend(dv);
+        }
+        l.orthonormalize(false);
+        l
+    }
+
+    pub fn count(&self) -> usize {
+        self.log_growth.len()
+    }
+
+    fn dofs(&self) -> usize {
+        self.du.len() / self.count()
+    }
+
+    pub fn copy_from(&mut self, other: &Lyapunov) {
+        self.du.copy_from_slice(&other.du);
+        self.dv.copy_from_slice(&other.dv);
+        self.tau = other.tau;
+        self.count_from = other.count_from;
+        self.log_growth.copy_from_slice(&other.log_growth);
+        self.counted_time = other.counted_time;
+    }
+
+    /// The running estimates of the exponents (1/s): the summed growth over the counted time,
+    /// or 0 before any sub-step counted.
+    pub fn exponent(&self, j: usize) -> f64 {
+        if self.counted_time > 0.0 {
+            self.log_growth[j] / self.counted_time
+        } else {
+            0.0
+        }
+    }
+
+    pub fn counted_time(&self) -> f64 {
+        self.counted_time
+    }
+
+    /// Advances the vectors over the sub-step `[t_n, t_n + dt]` that `midpoint` just took
+    /// (with [`Midpoint::linearize`] set, so that its factored Jacobian belongs to the
+    /// converged step), then re-orthonormalizes them and books the growth if `t_n` counts.
+    pub fn advance(
+        &mut self,
+        rod: &Rod,
+        midpoint: &Midpoint,
+        scratch: &mut TangentScratch,
+        t_n: f64,
+        dt: f64,
+    ) {
+        let n = self.dofs();
+        let jac = midpoint.linearization();
+        for j in 0..self.count() {
+            let du = &mut self.du[j * n..(j + 1) * n];
+            let dv = &mut self.dv[j * n..(j + 1) * n];
+            // rhs = 2 A du + 2/dt M dv = M (4/dt^2 du + 2/dt dv) + C (2/dt du).
+            for ((x, u), v) in scratch.x.iter_mut().zip(du.iter()).zip(dv.iter()) {
+                *x = 4.0 / (dt * dt) * u + 2.0 / dt * v;
+            }
+            scratch.rhs.fill(0.0);
+            rod.add_mass_times(&scratch.x, &mut scratch.rhs, 1.0);
+            rod.add_damping_times(du, &mut scratch.rhs, 2.0 / dt);
+            rod.zero_constrained(&mut scratch.rhs);
+            jac.solve_in_place(&mut scratch.rhs);
+            for ((u, v), x) in du.iter_mut().zip(dv.iter_mut()).zip(&scratch.rhs) {
+                let du_next = x - *u;
+                *v = 2.0 / dt * (du_next - *u) - *v;
+                *u = du_next;
+            }
+            rod.zero_constrained(du);
+            rod.zero_constrained(dv);
+        }
+        let counts = t_n >= self.count_from;
+        self.orthonormalize(counts);
+        if counts {
+            self.counted_time += dt;
+        }
+    }
+
+    /// Modified Gram-Schmidt in the weighted norm; with `book`, adds `ln |R_jj|` to the growth.
+    fn orthonormalize(&mut self, book: bool) {
+        let n = self.dofs();
+        for j in 0..self.count() {
+            let (done_u, rest_u) = self.du.split_at_mut(j * n);
+            let (done_v, rest_v) = self.dv.split_at_mut(j * n);
+            let (u, v) = (&mut rest_u[..n], &mut rest_v[..n]);
+            for i in 0..j {
+                let (qu, qv) = (&done_u[i * n..(i + 1) * n], &done_v[i * n..(i + 1) * n]);
+                let p = weighted_dot(u, v, qu, qv, self.tau);
+                u.iter_mut().zip(qu).for_each(|(x, q)| *x -= p * q);
+                v.iter_mut().zip(qv).for_each(|(x, q)| *x -= p * q);
+            }
+            let r = weighted_norm(u, v, self.tau);
+            u.iter_mut().chain(v.iter_mut()).for_each(|x| *x /= r);
+            if book {
+                self.log_growth[j] += r.ln();
+            }
+        }
+    }
+
+    /// Everything that defines the estimate, for snapshots: (vectors u, vectors v, growth,
+    /// counted time).
+    pub fn parts(&self) -> (&[f64], &[f64], &[f64], f64) {
+        (&self.du, &self.dv, &self.log_growth, self.counted_time)
+    }
+
+    /// Restores what [`Lyapunov::parts`] gave (same `k` and dofs; checked by the caller).
+    pub fn set_parts(&mut self, du: &[f64], dv: &[f64], log_growth: &[f64], counted_time: f64) {
+        self.du.copy_from_slice(du);
+        self.dv.copy_from_slice(dv);
+        self.log_growth.copy_from_slice(log_growth);
+        self.counted_time = counted_time;
+    }
+
+    /// Whether every number is finite (a blown-up tangent means a non-finite exponent).
+    pub fn is_finite(&self) -> bool {
+        self.du
+            .iter()
+            .chain(&self.dv)
+            .chain(&self.log_growth)
+            .all(|x| x.is_finite())
+            && self.counted_time.is_finite()
+    }
+}
