@@ -137,11 +137,17 @@ pub(super) fn quoted(items: &[&str]) -> String {
         .join(", ")
 }
 
-pub(super) fn entry(table: &str, index: usize, name: Option<&String>, key: &str) -> String {
+/// An entry of an array of tables: `[[load]] #2 "shake"` (1-based, with its name if it has one).
+pub(super) fn item(table: &str, index: usize, name: Option<&String>) -> String {
     match name {
-        Some(n) => format!("[[{table}]] #{} \"{n}\", key `{key}`", index + 1),
-        None => format!("[[{table}]] #{}, key `{key}`", index + 1),
+        Some(n) => format!("[[{table}]] #{} \"{n}\"", index + 1),
+        None => format!("[[{table}]] #{}", index + 1),
     }
+}
+
+/// A key of an entry of an array of tables: `[[load]] #2 "shake", key `at``.
+pub(super) fn entry(table: &str, index: usize, name: Option<&String>, key: &str) -> String {
+    format!("{}, key `{key}`", item(table, index, name))
 }
 
 pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
@@ -153,17 +159,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
              (see docs/scenes.md)",
         );
     }
-    let raw: SceneFile = toml::from_str(text).map_err(|e| {
-        let key = e.span().map_or(String::new(), |span| {
-            let line = text[..span.start].matches('\n').count() + 1;
-            format!("line {line}")
-        });
-        SceneError {
-            file: file.to_string(),
-            key,
-            message: e.message().trim().to_string(),
-        }
-    })?;
+    let raw: SceneFile = super::syntax::read(text, file)?;
     let name = c.identifier(raw.name.as_ref(), "name")?;
     let experiment = experiment(&c, &raw)?;
     let (geometry, span, rise) = geometry(&c, &raw)?;

@@ -9,6 +9,7 @@ mod check;
 mod file;
 mod items;
 pub mod params;
+mod syntax;
 pub mod variables;
 
 pub use params::{Param, ParamError, ParamValues, Range, Std, VarType, Variability};
