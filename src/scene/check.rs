@@ -3,7 +3,7 @@
 //! solving anything (supports that leave a rigid-body motion free, supports off the mesh).
 use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::{items, variables};
+use super::{claims, items, variables};
 use super::{
     Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor, Slot,
 };
@@ -11,6 +11,7 @@ use super::{
 /// Default shape samples when `[shape]` is absent.
 const DEFAULT_SHAPE_POINTS: usize = 21;
 const MAX_SHAPE_POINTS: usize = 10_000;
+const _: () = assert!(MAX_SHAPE_POINTS <= variables::MAX_SHAPE_POINTS);
 
 pub(super) struct Checker<'a> {
     pub(super) file: &'a str,
@@ -227,7 +228,10 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         model,
         source: text.to_string(),
     };
-    if let Err((key, message)) = variables::check_names(&scene) {
+    if let Err((key, message)) = claims::check_blocks(&scene) {
+        return c.err(key, message);
+    }
+    if let Err((key, message)) = claims::check_names(&scene) {
         return c.err(key, message);
     }
     if scene.initial.state == InitialState::Static {
