@@ -18,7 +18,7 @@ use std::ptr::{null, null_mut};
 
 #[test]
 fn value_references_match_the_scene_files() {
-    for name in SCENES {
+    for name in PAPER_SCENES {
         let scene = georod::scene::Scene::load(format!(
             "{}/scenes/{name}.toml",
             env!("CARGO_MANIFEST_DIR")
@@ -565,13 +565,15 @@ fn refused_instantiations() {
 
 #[test]
 fn every_scene_has_its_guid() {
-    for scene in 0..SCENES.len() {
-        let fmu = Fmu::new(scene);
+    for (scene, path) in scene_files() {
+        let fmu = Fmu::new(&scene);
         let mut elements = 0;
         assert_eq!(
             unsafe { fmi2GetInteger(fmu.c, &vr::elements, 1, &mut elements) },
             fmi2Status::OK
         );
+        let file = georod::scene::Scene::load(&path).unwrap();
+        assert_eq!(elements as usize, file.defaults().elements(), "{scene}");
     }
 }
 

@@ -49,12 +49,42 @@ fn bad_files() -> Vec<(&'static str, String, Vec<&'static str>)> {
         (
             "an unknown key",
             edit("L = 10.0", "L = 10.0\nwidth = 1.0"),
-            vec!["unknown field `width`", "line"],
+            vec!["geometry.width", "unknown field `width`", "line 6"],
         ),
         (
-            "a wrong type",
+            "a wrong type in a table",
             edit("L = 10.0", "L = \"ten\""),
-            vec!["invalid type", "line"],
+            vec![
+                "geometry.L",
+                "a string (\"ten\")",
+                "a number is allowed",
+                "line 5",
+            ],
+        ),
+        (
+            "a wrong type in an array of tables",
+            edit("at = 0.5", "at = \"half\""),
+            vec!["[[load]] #2 \"f_ctrl\", key `at`", "a number is allowed"],
+        ),
+        (
+            "a wrong type in an array",
+            edit("fix = [\"u1\", \"u2\"]", "fix = [\"u1\", 2]"),
+            vec!["[[support]] #1 \"left\", key `fix`", "a string is allowed"],
+        ),
+        (
+            "a number where an integer is allowed",
+            format!("{GOOD}[shape]\npoints = 2.5\n"),
+            vec!["shape.points", "an integer is allowed"],
+        ),
+        (
+            "a table where an array of tables is allowed",
+            edit("[[sensor]]", "[sensor]"),
+            vec!["sensor: ", "write [[sensor]], not [sensor]"],
+        ),
+        (
+            "a wrong type in an inline table",
+            format!("experiment = {{ stop = \"1 s\" }}\n{GOOD}"),
+            vec!["experiment.stop", "a number is allowed"],
         ),
         (
             "a station outside [0, 1]",
@@ -238,6 +268,9 @@ fn the_packager_refuses_bad_files_and_writes_nothing() {
             .unwrap();
         let stderr = String::from_utf8_lossy(&run.stderr);
         assert!(!run.status.success(), "{what}: packaged");
+        // 101 is the exit code of a Rust panic: a bad file must be refused, never crash.
+        assert_ne!(run.status.code(), Some(101), "{what}: panicked: {stderr}");
+        assert!(!stderr.contains("panicked"), "{what}: {stderr}");
         assert!(stderr.contains(file.to_str().unwrap()), "{what}: {stderr}");
         for part in parts {
             assert!(stderr.contains(part), "{what}: `{stderr}` lacks `{part}`");

@@ -13,6 +13,8 @@ use georod::simulation::{SimError, Simulation};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+/// The paper's scenes, deliberately by name: the forcing levels of this study (beam 7, arches
+/// 1000, ...) and the `w_mid` it reports are theirs.
 const SCENES: [&str; 3] = ["BuckledBeam", "PinnedArch", "ClampedArch"];
 
 /// Every output of the simulation's scene (sensors, reactions, shape, energies), by name.

@@ -1,4 +1,4 @@
-"""Session fixtures: the three FMUs (built by scripts/build_fmus when missing or stale), each
+"""Session fixtures: the scenes' FMUs (built by scripts/build_fmus when missing or stale), each
 extracted once for the FMU2Slave tests, and the core's CLI for the reference trajectories.
 
 No silent skips: a test that needs something absent builds it (the FMUs, the CLI) or fails with
@@ -13,7 +13,17 @@ from pathlib import Path
 import fmpy
 import pytest
 
-from helpers import FMU_DIR, GEOROD_CLI, RELEASE_DIR, REPO, SCENES, FmuInfo, run_cmd
+from helpers import (
+    FMU_DIR,
+    GEOROD_CLI,
+    RELEASE_DIR,
+    REPO,
+    SCENE_FILES,
+    SCENES,
+    FmuInfo,
+    run_cmd,
+    stale_fmus,
+)
 
 RELEASE_LIB = RELEASE_DIR / "libgeorod.so"
 BUILD_FMUS = REPO / "scripts" / "build_fmus"
@@ -42,20 +52,12 @@ def pytest_make_collect_report(collector: pytest.Collector):  # noqa: ANN201
         report.longrepr = f"skipped at collection, and skips are failures here: {reason}"
 
 
-def _stale(fmus: list[Path]) -> bool:
-    if not all(p.exists() for p in fmus):
-        return True
-    if RELEASE_LIB.exists():
-        return min(p.stat().st_mtime for p in fmus) < RELEASE_LIB.stat().st_mtime
-    return False
-
-
 @pytest.fixture(scope="session")
 def fmu_paths() -> dict[str, Path]:
-    """target/fmu/<Scene>.fmu for every scene; runs scripts/build_fmus once if any is missing or
-    older than the release library."""
-    fmus = [FMU_DIR / f"{s}.fmu" for s in SCENES]
-    if _stale(fmus):
+    """target/fmu/<Scene>.fmu for every scene of scenes/; runs scripts/build_fmus once if the FMU
+    of any scene file (scenes/ and examples/, all of which it packages) is missing, older than the
+    release library or older than its scene file."""
+    if stale_fmus(SCENE_FILES, FMU_DIR, RELEASE_LIB):
         if not BUILD_FMUS.exists():
             pytest.fail(f"FMUs missing or stale and {BUILD_FMUS} does not exist")
         r = run_cmd([BUILD_FMUS], timeout=1200)
@@ -64,9 +66,9 @@ def fmu_paths() -> dict[str, Path]:
                 f"scripts/build_fmus failed ({r.returncode}):\n"
                 f"{r.stdout[-3000:]}\n{r.stderr[-3000:]}"
             )
-        missing = [p for p in fmus if not p.exists()]
-        if missing:
-            pytest.fail(f"scripts/build_fmus did not produce {missing}")
+        left = stale_fmus(SCENE_FILES, FMU_DIR, RELEASE_LIB)
+        if left:
+            pytest.fail(f"scripts/build_fmus left FMUs out of date: {'; '.join(left)}")
     return {s: FMU_DIR / f"{s}.fmu" for s in SCENES}
 
 

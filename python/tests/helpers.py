@@ -33,6 +33,11 @@ RELEASE_DIR = REPO / "target" / "release"
 GEOROD_CLI = RELEASE_DIR / "georod"
 #: The paper's scenes, whose FMUs these tests exercise (scene files in scenes/).
 SCENES: tuple[str, ...] = tuple(sorted(p.stem for p in (REPO / "scenes").glob("*.toml")))
+#: Every scene file that scripts/build_fmus packages into FMU_DIR/<stem>.fmu: the paper's scenes
+#: and the examples.
+SCENE_FILES: tuple[Path, ...] = tuple(
+    sorted((REPO / "scenes").glob("*.toml")) + sorted((REPO / "examples").glob("*.toml"))
+)
 
 # FMI 2.0 status codes (fmi2Status)
 OK, WARNING, DISCARD, ERROR, FATAL = 0, 1, 2, 3, 4
@@ -267,3 +272,22 @@ def run_cmd(
         timeout=timeout,
         check=False,
     )
+
+
+def stale_fmus(scene_files: Sequence[Path], fmu_dir: Path, library: Path) -> list[str]:
+    """Why the FMUs of `scene_files` (fmu_dir/<stem>.fmu) must be packaged again: each one that is
+    missing, older than `library` (when it exists) or older than its scene file. Empty when every
+    FMU is up to date."""
+    reasons = []
+    lib_time = library.stat().st_mtime if library.exists() else None
+    for scene in scene_files:
+        fmu = fmu_dir / f"{scene.stem}.fmu"
+        if not fmu.exists():
+            reasons.append(f"{fmu.name} is missing")
+            continue
+        fmu_time = fmu.stat().st_mtime
+        if lib_time is not None and fmu_time < lib_time:
+            reasons.append(f"{fmu.name} is older than {library.name}")
+        if fmu_time < scene.stat().st_mtime:
+            reasons.append(f"{fmu.name} is older than its scene file {scene.name}")
+    return reasons

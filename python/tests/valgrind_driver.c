@@ -2,7 +2,13 @@
  * A minimal FMI 2.0 Co-Simulation host for running an FMU's shared library under valgrind
  * (scripts/valgrind_fmu). No FMI headers needed: the few types are declared here.
  *
- *   valgrind_driver LIBRARY.so GUID RESOURCE_URI [STEPS] [STEP_SIZE]
+ *   valgrind_driver LIBRARY.so GUID RESOURCE_URI [STEPS] [STEP_SIZE] [FORCING] [INPUT] [OUTPUTS]
+ *
+ * FORCING: the value references of F,Omega (set to 0.9, 3500 before initialization), "-" for a
+ * scene without a harmonic load; INPUT: the value reference of the input driven over the steps
+ * (1e-3 * (k % 3)), "-" for none; OUTPUTS: two output value references read with E_kin and
+ * E_strain. Defaults: the paper scenes' "9,10", "1000" (f_ctrl) and "2000,2001" (w_mid, v_mid);
+ * scripts/valgrind_fmu reads them from each FMU's modelDescription.xml.
  *
  * Cycle: instantiate, setupExperiment, set parameters, enter/exit initialization, STEPS doSteps
  * reading every output, get/set FMU state (roll back and compare), serialize / deserialize,
@@ -40,9 +46,18 @@ typedef struct {
     fmi2ComponentEnvironment componentEnvironment;
 } fmi2CallbackFunctions;
 
-/* value references of the paper scenes (scenes/*.toml; tests/fmi_api.rs checks them) */
-enum { VR_F = 9, VR_OMEGA = 10, VR_F_CTRL = 1000, VR_W_MID = 2000, VR_V_MID = 2001, VR_E_KIN = 32, VR_E_STRAIN = 33,
-       VR_NEWTON = 34 };
+/* value references every scene has (src/scene/variables.rs) */
+enum { VR_E_KIN = 32, VR_E_STRAIN = 33, VR_NEWTON = 34 };
+
+/* "a,b" into two value references; "-" (none) gives 0; 1 when parsed */
+static int parse_pair(const char *text, fmi2ValueReference *a, fmi2ValueReference *b) {
+    if (strcmp(text, "-") == 0) return 0;
+    if (sscanf(text, "%u,%u", a, b) != 2) {
+        fprintf(stderr, "expected two value references \"a,b\" or \"-\", got \"%s\"\n", text);
+        exit(2);
+    }
+    return 1;
+}
 
 static int messages = 0;
 
@@ -99,12 +114,25 @@ typedef fmi2Status (*fmi2GetRealStatus_t)(fmi2Component, fmi2StatusKind, fmi2Rea
 
 int main(int argc, char **argv) {
     if (argc < 4) {
-        fprintf(stderr, "usage: %s LIBRARY.so GUID RESOURCE_URI [STEPS] [STEP_SIZE]\n", argv[0]);
+        fprintf(stderr, "usage: %s LIBRARY.so GUID RESOURCE_URI [STEPS] [STEP_SIZE] [FORCING] [INPUT] [OUTPUTS]\n",
+                argv[0]);
         return 2;
     }
     const char *path = argv[1], *guid = argv[2], *resources = argv[3];
     int steps = argc > 4 ? atoi(argv[4]) : 100;
     double h = argc > 5 ? atof(argv[5]) : 1e-5;
+    fmi2ValueReference vr_forcing[2] = {9, 10}, vr_ctrl = 1000, vr_out[4] = {2000, 2001, VR_E_KIN, VR_E_STRAIN};
+    int forced = argc > 6 ? parse_pair(argv[6], &vr_forcing[0], &vr_forcing[1]) : 1;
+    int driven = 1;
+    if (argc > 7 && strcmp(argv[7], "-") == 0) driven = 0;
+    else if (argc > 7 && sscanf(argv[7], "%u", &vr_ctrl) != 1) {
+        fprintf(stderr, "expected an input value reference or \"-\", got \"%s\"\n", argv[7]);
+        return 2;
+    }
+    if (argc > 8 && !parse_pair(argv[8], &vr_out[0], &vr_out[1])) {
+        fprintf(stderr, "OUTPUTS: two output value references are needed\n");
+        return 2;
+    }
 
     void *lib = dlopen(path, RTLD_NOW | RTLD_LOCAL);
     if (!lib) {
@@ -138,14 +166,12 @@ int main(int argc, char **argv) {
     /* a refused call before initialization (error path + logger) */
     EXPECT(fmi2DoStep(c, 0.0, h, 1), fmi2Error);
     EXPECT(fmi2SetupExperiment(c, 0, 0.0, 0.0, 0, 0.0), fmi2OK);
-    const fmi2ValueReference vr_forcing[2] = {VR_F, VR_OMEGA};
     const fmi2Real forcing[2] = {0.9, 3500.0};
-    EXPECT(fmi2SetReal(c, vr_forcing, 2, forcing), fmi2OK);
+    if (forced) EXPECT(fmi2SetReal(c, vr_forcing, 2, forcing), fmi2OK);
     EXPECT(fmi2EnterInitializationMode(c), fmi2OK);
     EXPECT(fmi2ExitInitializationMode(c), fmi2OK);
 
-    const fmi2ValueReference vr_out[4] = {VR_W_MID, VR_V_MID, VR_E_KIN, VR_E_STRAIN};
-    const fmi2ValueReference vr_newton = VR_NEWTON, vr_ctrl = VR_F_CTRL, vr_bad = 12345;
+    const fmi2ValueReference vr_newton = VR_NEWTON, vr_bad = 12345;
     fmi2Real out[4], first[4], again[4], t_last = -1.0;
     fmi2Integer newton = 0;
     fmi2FMUstate state = NULL, restored = NULL;
@@ -153,12 +179,12 @@ int main(int argc, char **argv) {
     for (int k = 0; k < steps; k++) {
         if (k == half) EXPECT(fmi2GetFMUstate(c, &state), fmi2OK);
         fmi2Real ctrl = 1e-3 * (k % 3);
-        EXPECT(fmi2SetReal(c, &vr_ctrl, 1, &ctrl), fmi2OK);
+        if (driven) EXPECT(fmi2SetReal(c, &vr_ctrl, 1, &ctrl), fmi2OK);
         EXPECT(fmi2DoStep(c, k * h, h, 1), fmi2OK);
         EXPECT(fmi2GetReal(c, vr_out, 4, out), fmi2OK);
         EXPECT(fmi2GetInteger(c, &vr_newton, 1, &newton), fmi2OK);
         if (!isfinite(out[0])) {
-            fprintf(stderr, "FAIL: w_mid not finite at step %d\n", k);
+            fprintf(stderr, "FAIL: output %u not finite at step %d\n", vr_out[0], k);
             failures++;
         }
     }
@@ -168,7 +194,7 @@ int main(int argc, char **argv) {
     EXPECT(fmi2SetFMUstate(c, state), fmi2OK);
     for (int k = half; k < steps; k++) {
         fmi2Real ctrl = 1e-3 * (k % 3);
-        EXPECT(fmi2SetReal(c, &vr_ctrl, 1, &ctrl), fmi2OK);
+        if (driven) EXPECT(fmi2SetReal(c, &vr_ctrl, 1, &ctrl), fmi2OK);
         EXPECT(fmi2DoStep(c, k * h, h, 1), fmi2OK);
     }
     EXPECT(fmi2GetReal(c, vr_out, 4, again), fmi2OK);
@@ -231,12 +257,12 @@ int main(int argc, char **argv) {
     fmi2FMUstate unfreed = NULL;
     EXPECT(fmi2GetFMUstate(c, &unfreed), fmi2OK);
 
-    /* refused calls: unknown value reference, NULL state, NaN input (the instance may be in the
-       error state afterwards, so terminate's answer is not checked) */
+    /* refused calls: unknown value reference, NULL state, NaN input or forcing (the instance may be
+       in the error state afterwards, so terminate's answer is not checked) */
     EXPECT(fmi2GetReal(c, &vr_bad, 1, out), fmi2Error);
     EXPECT(fmi2SetFMUstate(c, NULL), fmi2Error);
     fmi2Real nan_value = NAN;
-    EXPECT(fmi2SetReal(c, &vr_ctrl, 1, &nan_value), fmi2Error);
+    if (driven || forced) EXPECT(fmi2SetReal(c, driven ? &vr_ctrl : &vr_forcing[0], 1, &nan_value), fmi2Error);
     (void)fmi2Terminate(c);
     fmi2FreeInstance(c);
 
@@ -246,7 +272,7 @@ int main(int argc, char **argv) {
     else failures++;
 
     dlclose(lib);
-    printf("%s: %d steps of %g s, w_mid = %.17g, %d log messages, %d failures\n", path, steps, h, first[0],
-           messages, failures);
+    printf("%s: %d steps of %g s, output %u = %.17g, %d log messages, %d failures\n", path, steps, h, vr_out[0],
+           first[0], messages, failures);
     return failures ? 2 : 0;
 }

@@ -3,7 +3,7 @@
 //! solving anything (supports that leave a rigid-body motion free, supports off the mesh).
 use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::{items, variables};
+use super::{claims, items, variables};
 use super::{
     Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor, Slot,
 };
@@ -11,6 +11,7 @@ use super::{
 /// Default shape samples when `[shape]` is absent.
 const DEFAULT_SHAPE_POINTS: usize = 21;
 const MAX_SHAPE_POINTS: usize = 10_000;
+const _: () = assert!(MAX_SHAPE_POINTS <= variables::MAX_SHAPE_POINTS);
 
 pub(super) struct Checker<'a> {
     pub(super) file: &'a str,
@@ -137,11 +138,17 @@ pub(super) fn quoted(items: &[&str]) -> String {
         .join(", ")
 }
 
-pub(super) fn entry(table: &str, index: usize, name: Option<&String>, key: &str) -> String {
+/// An entry of an array of tables: `[[load]] #2 "shake"` (1-based, with its name if it has one).
+pub(super) fn item(table: &str, index: usize, name: Option<&String>) -> String {
     match name {
-        Some(n) => format!("[[{table}]] #{} \"{n}\", key `{key}`", index + 1),
-        None => format!("[[{table}]] #{}, key `{key}`", index + 1),
+        Some(n) => format!("[[{table}]] #{} \"{n}\"", index + 1),
+        None => format!("[[{table}]] #{}", index + 1),
     }
+}
+
+/// A key of an entry of an array of tables: `[[load]] #2 "shake", key `at``.
+pub(super) fn entry(table: &str, index: usize, name: Option<&String>, key: &str) -> String {
+    format!("{}, key `{key}`", item(table, index, name))
 }
 
 pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
@@ -153,17 +160,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
              (see docs/scenes.md)",
         );
     }
-    let raw: SceneFile = toml::from_str(text).map_err(|e| {
-        let key = e.span().map_or(String::new(), |span| {
-            let line = text[..span.start].matches('\n').count() + 1;
-            format!("line {line}")
-        });
-        SceneError {
-            file: file.to_string(),
-            key,
-            message: e.message().trim().to_string(),
-        }
-    })?;
+    let raw: SceneFile = super::syntax::read(text, file)?;
     let name = c.identifier(raw.name.as_ref(), "name")?;
     let experiment = experiment(&c, &raw)?;
     let (geometry, span, rise) = geometry(&c, &raw)?;
@@ -231,7 +228,10 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         model,
         source: text.to_string(),
     };
-    if let Err((key, message)) = variables::check_names(&scene) {
+    if let Err((key, message)) = claims::check_blocks(&scene) {
+        return c.err(key, message);
+    }
+    if let Err((key, message)) = claims::check_names(&scene) {
         return c.err(key, message);
     }
     if scene.initial.state == InitialState::Static {

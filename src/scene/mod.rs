@@ -6,9 +6,11 @@
 //! the file, the key and what is allowed; the packager, the core and the FMU all read scenes
 //! through it.
 mod check;
+mod claims;
 mod file;
 mod items;
 pub mod params;
+mod syntax;
 pub mod variables;
 
 pub use params::{Param, ParamError, ParamValues, Range, Std, VarType, Variability};

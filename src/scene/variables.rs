@@ -2,9 +2,8 @@
 //! loads, support motions), the standard outputs, then its sensors, support reactions and shape
 //! samples. Each variable knows what it stands for ([`Role`]), so the FMI layer maps a value
 //! reference to a parameter index, an input index or an [`OutputId`] without knowing any physics.
-use super::params::{Range, VarType, Variability};
-use super::{Scene, Slot, DOF_NAMES};
-use std::collections::BTreeMap;
+use super::params::{Range, VarType, Variability, SCENE_PARAM_VR};
+use super::{Scene, Slot};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Causality {
@@ -157,12 +156,20 @@ pub struct Variable {
 const LYAPUNOV_VR: u32 = 40;
 const LYAPUNOV_PER_PERIOD_VR: u32 = 44;
 const LYAPUNOV_TIME_VR: u32 = 48;
-const INPUT_VR: u32 = 1_000;
-const SENSOR_VR: u32 = 2_000;
-const REACTION_VR: u32 = 3_000;
-const SHAPE_X_VR: u32 = 10_000;
-const SHAPE_Y_VR: u32 = 20_000;
+pub const INPUT_VR: u32 = 1_000;
+pub const SENSOR_VR: u32 = 2_000;
+pub const REACTION_VR: u32 = 3_000;
+pub const SHAPE_X_VR: u32 = 10_000;
+pub const SHAPE_Y_VR: u32 = 20_000;
 pub const REACTION_SUFFIXES: [&str; 3] = ["Rx", "Ry", "M"];
+
+/// The most scene parameters, inputs, sensors, supports and shape samples whose value
+/// references fit their blocks (each block ends where the next begins).
+pub const MAX_SCENE_PARAMS: usize = (INPUT_VR - SCENE_PARAM_VR) as usize;
+pub const MAX_INPUTS: usize = (SENSOR_VR - INPUT_VR) as usize;
+pub const MAX_SENSORS: usize = (REACTION_VR - SENSOR_VR) as usize;
+pub const MAX_SUPPORTS: usize = ((SHAPE_X_VR - REACTION_VR) / 3) as usize;
+pub const MAX_SHAPE_POINTS: usize = (SHAPE_Y_VR - SHAPE_X_VR) as usize;
 
 fn output(
     name: String,
@@ -378,61 +385,6 @@ fn lyapunov_outputs(scene: &Scene) -> Vec<Variable> {
         OutputId::LyapunovTime,
     ));
     vars
-}
-
-/// Every name an FMU variable of this scene would get must be unique; a clash is reported with
-/// the scene key that makes it.
-pub fn check_names(scene: &Scene) -> Result<(), (String, String)> {
-    let mut seen: BTreeMap<String, String> = BTreeMap::new();
-    let mut claim = |name: String, by: String| -> Result<(), (String, String)> {
-        match seen.get(&name) {
-            Some(first) => Err((
-                by.clone(),
-                format!("the name `{name}` is used twice: by {first} and by {by}"),
-            )),
-            None => {
-                seen.insert(name, by);
-                Ok(())
-            }
-        }
-    };
-    for p in &scene.params {
-        claim(p.name.clone(), format!("parameter {}", p.name))?;
-    }
-    for (_, name, ..) in STANDARD_OUTPUTS {
-        claim(name.to_string(), format!("the standard output {name}"))?;
-    }
-    for i in &scene.inputs {
-        claim(i.name.clone(), format!("the input {}", i.name))?;
-    }
-    for s in &scene.sensors {
-        claim(s.name.clone(), format!("[[sensor]] {}", s.name))?;
-    }
-    for s in &scene.supports {
-        for suffix in REACTION_SUFFIXES {
-            claim(
-                format!("{}_{suffix}", s.name),
-                format!("the reactions of [[support]] {}", s.name),
-            )?;
-        }
-    }
-    for l in &scene.loads {
-        if !matches!(l.time, super::TimeLaw::Input(_)) {
-            // Only input loads become variables, but a load name is still one name.
-            claim(l.name.clone(), format!("[[load]] {}", l.name))?;
-        }
-    }
-    for n in [
-        "shape_x",
-        "shape_y",
-        "lyapunov",
-        "lyapunov_per_period",
-        "lyapunov_time",
-    ] {
-        claim(n.to_string(), "the shape outputs".to_string())?;
-    }
-    let _ = DOF_NAMES;
-    Ok(())
 }
 
 /// The start value of input `i` for the given parameter values.

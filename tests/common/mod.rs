@@ -323,6 +323,26 @@ pub fn scene(name: &str) -> std::sync::Arc<georod::scene::Scene> {
     std::sync::Arc::new(georod::scene::Scene::load(&path).unwrap_or_else(|e| panic!("{e}")))
 }
 
+/// Every scene file of this repository (`scenes/*.toml`, then `examples/*.toml`), loaded.
+pub fn scene_files() -> Vec<std::sync::Arc<georod::scene::Scene>> {
+    let mut paths = Vec::new();
+    for dir in ["scenes", "examples"] {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+        let mut here: Vec<_> = (std::fs::read_dir(&dir).unwrap())
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .collect();
+        here.sort();
+        paths.extend(here);
+    }
+    paths
+        .iter()
+        .map(|p| {
+            std::sync::Arc::new(georod::scene::Scene::load(p).unwrap_or_else(|e| panic!("{e}")))
+        })
+        .collect()
+}
+
 /// A scene's simulation with some parameters overridden by name.
 pub fn simulation(name: &str, overrides: &[(&str, f64)]) -> georod::simulation::Simulation {
     let scene = scene(name);

@@ -19,9 +19,27 @@ use std::ffi::{c_void, CStr, CString};
 use std::os::raw::c_char;
 use std::sync::OnceLock;
 
-pub const BEAM: usize = 0;
-pub const PINNED: usize = 1;
-pub const SCENES: [&str; 3] = ["BuckledBeam", "PinnedArch", "ClampedArch"];
+pub const BEAM: &str = "BuckledBeam";
+pub const PINNED: &str = "PinnedArch";
+/// The paper's scenes, whose variables `vr` lists.
+pub const PAPER_SCENES: [&str; 3] = ["BuckledBeam", "PinnedArch", "ClampedArch"];
+
+/// Every scene file the FMUs are made from (scenes/*.toml, examples/*.toml): (name, path).
+pub fn scene_files() -> Vec<(String, std::path::PathBuf)> {
+    let mut files = Vec::new();
+    for dir in ["scenes", "examples"] {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(dir);
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.extension().is_some_and(|e| e == "toml") {
+                let name = path.file_stem().unwrap().to_str().unwrap().to_string();
+                files.push((name, path));
+            }
+        }
+    }
+    files.sort();
+    files
+}
 
 /// Value references of the paper scenes' variables (checked against the scene files by
 /// `value_references_match_the_scene_files`).
@@ -49,27 +67,29 @@ pub mod vr {
     pub const v_mid: u32 = 2001;
 }
 
-/// The unzipped resources of each scene's FMU (the scene file as `scene.toml`) and its GUID:
-/// `(guid, file: URI of the folder)`, made once per test process.
-pub fn resources(scene: usize) -> (CString, CString) {
-    static MADE: OnceLock<Vec<(String, String)>> = OnceLock::new();
+/// The unzipped resources of a scene's FMU (the scene file as `scene.toml`) and its GUID:
+/// `(guid, file: URI of the folder)`, made once per test process for every scene file.
+pub fn resources(scene: &str) -> (CString, CString) {
+    static MADE: OnceLock<Vec<(String, String, String)>> = OnceLock::new();
     let made = MADE.get_or_init(|| {
         let root = std::env::temp_dir().join(format!("georod fmi_api {}", std::process::id()));
-        SCENES
-            .iter()
-            .map(|name| {
-                let dir = root.join(name).join("resources");
+        scene_files()
+            .into_iter()
+            .map(|(name, source)| {
+                let dir = root.join(&name).join("resources");
                 std::fs::create_dir_all(&dir).unwrap();
-                let source = format!("{}/scenes/{name}.toml", env!("CARGO_MANIFEST_DIR"));
                 let scene = georod::scene::Scene::load(&source).unwrap();
                 std::fs::write(dir.join("scene.toml"), &scene.source).unwrap();
                 let guid = georod::packaging::model_description::model_description(&scene).guid;
                 let uri = format!("file://{}", dir.display()).replace(' ', "%20");
-                (guid, uri)
+                (name, guid, uri)
             })
             .collect()
     });
-    let (guid, uri) = &made[scene];
+    let (_, guid, uri) = made
+        .iter()
+        .find(|(name, ..)| name == scene)
+        .unwrap_or_else(|| panic!("no scene file for {scene}"));
     (
         CString::new(guid.as_str()).unwrap(),
         CString::new(uri.as_str()).unwrap(),
@@ -158,11 +178,11 @@ pub struct Fmu {
 }
 
 impl Fmu {
-    pub fn new(scene: usize) -> Fmu {
+    pub fn new(scene: &str) -> Fmu {
         Fmu::with(scene, "inst", false)
     }
 
-    pub fn with(scene: usize, name: &str, logging_on: bool) -> Fmu {
+    pub fn with(scene: &str, name: &str, logging_on: bool) -> Fmu {
         let log: Box<Log> = Box::default();
         let cb = callbacks(&*log as *const Log as *mut c_void);
         let name = CString::new(name).unwrap();
