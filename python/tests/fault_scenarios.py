@@ -112,6 +112,11 @@ def handles(fmu: Fmu, check: Checker) -> None:
     s, _ = good_state(host)
     status, cleared = host.free_state(s)
     check(status == OK and cleared is None, "freeing a live state")
+    # Handles are never reused: many states got and freed after `s` leave it stale for good.
+    for _ in range(200):
+        status, t = host.get_state()
+        check(status == OK and t != s, "a freed handle was given out again")
+        check(host.free_state(t)[0] == OK, "freeing a live state")
     junk = create_string_buffer(bytes(range(256)) * 2, 512)
     bad = {
         "stale": s,
