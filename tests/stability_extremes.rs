@@ -282,6 +282,7 @@ fn refused_values_name_the_variable() {
         ("L", 0.0),
         ("elements", 1.0),
         ("elements", 2.5),
+        ("elements", 100_001.0),
         ("dt_max", 0.0),
         ("dt_max", f64::NAN),
         ("F", f64::NAN),

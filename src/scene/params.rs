@@ -283,7 +283,8 @@ const ALWAYS: [Standard; 10] = [
         unit: None,
         description: "Number of finite elements (supports must fall on nodes)",
         start: 10.0,
-        range: Range::between(2.0, 100_000.0),
+        // Narrowed per scene to the counts its supports allow (`Scene::element_range`).
+        range: Range::between(super::MIN_ELEMENTS as f64, super::MAX_ELEMENTS as f64),
     },
     real(
         "dt_max",
