@@ -340,3 +340,28 @@ pub fn same_as_twin(fmu: &Fmu, twin: &Fmu) {
     assert_eq!(fmu.time(), twin.time());
     assert_eq!(run(fmu, 1), run(twin, 1), "{:?}", fmu.messages());
 }
+
+/// Every function that takes a state refuses `h` with a message containing `part`.
+pub fn refused_everywhere(fmu: &Fmu, h: fmi2FMUstate, part: &str) {
+    let mut size = 0usize;
+    let mut buf = [0 as fmi2Byte; 16];
+    let mut slot = h;
+    unsafe {
+        fmu.expect_error(
+            fmi2SetFMUstate(fmu.c, h),
+            &["fmi2SetFMUstate: FMUstate", part],
+        );
+        fmu.expect_error(
+            fmi2FreeFMUstate(fmu.c, &mut slot),
+            &["fmi2FreeFMUstate", part],
+        );
+        assert_eq!(slot, h, "a refused free leaves the host's handle alone");
+        fmu.expect_error(fmi2SerializedFMUstateSize(fmu.c, h, &mut size), &[part]);
+        fmu.expect_error(
+            fmi2SerializeFMUstate(fmu.c, h, buf.as_mut_ptr(), 16),
+            &[part],
+        );
+    }
+    assert_eq!(size, 0);
+    assert!(buf.iter().all(|&b| b == 0));
+}
