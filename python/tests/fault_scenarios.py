@@ -215,7 +215,8 @@ def main() -> None:
     a = p.parse_args()
     fmu, check = Fmu(a.unzipdir), Checker()
     if a.scenario == "corrupt":
-        masks = list(range(1, 256)) if a.masks == "all" else [int(m, 16) for m in a.masks.split(",")]
+        every = a.masks == "all"
+        masks = list(range(1, 256)) if every else [int(m, 16) for m in a.masks.split(",")]
         corrupt(fmu, check, a.elements, a.sample, masks)
     else:
         SCENARIOS[a.scenario](fmu, check)
