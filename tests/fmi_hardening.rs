@@ -29,33 +29,6 @@ fn running() -> Fmu {
     fmu
 }
 
-fn get_state(fmu: &Fmu) -> fmi2FMUstate {
-    let mut s: fmi2FMUstate = null_mut();
-    assert_eq!(unsafe { fmi2GetFMUstate(fmu.c, &mut s) }, fmi2Status::OK);
-    s
-}
-
-fn serialize(fmu: &Fmu, s: fmi2FMUstate) -> Vec<fmi2Byte> {
-    let mut size = 0;
-    let mut bytes = unsafe {
-        assert_eq!(
-            fmi2SerializedFMUstateSize(fmu.c, s, &mut size),
-            fmi2Status::OK
-        );
-        vec![0 as fmi2Byte; size]
-    };
-    let status = unsafe { fmi2SerializeFMUstate(fmu.c, s, bytes.as_mut_ptr(), size) };
-    assert_eq!(status, fmi2Status::OK, "{:?}", fmu.messages());
-    bytes
-}
-
-/// Deserializes into a slot that holds `slot` on entry; returns the status and the slot after.
-fn deserialize(fmu: &Fmu, bytes: &[fmi2Byte], slot: fmi2FMUstate) -> (fmi2Status, fmi2FMUstate) {
-    let mut out = slot;
-    let status = unsafe { fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr(), bytes.len(), &mut out) };
-    (status, out)
-}
-
 fn as_bytes(b: &[fmi2Byte]) -> Vec<u8> {
     b.iter().map(|&x| x as u8).collect()
 }
@@ -77,12 +50,6 @@ fn state_data(fmu: &Fmu) -> StateData {
 fn serialize_data(fmu: &Fmu, data: &StateData) -> Vec<u8> {
     let inst = instance(fmu);
     fmu_state::serialize(data, inst.scene(), &inst.interface().guid).unwrap()
-}
-
-/// Asserts the instance steps on exactly like its twin (both advance one step).
-fn same_as_twin(fmu: &Fmu, twin: &Fmu) {
-    assert_eq!(fmu.time(), twin.time());
-    assert_eq!(run(fmu, 1), run(twin, 1), "{:?}", fmu.messages());
 }
 
 // ----- serialized states ----------------------------------------------------------------------
@@ -220,6 +187,24 @@ fn crafted_states_with_a_valid_checksum_are_checked_field_by_field() {
     let (status, mut out) = deserialize(&fmu, &as_c(&good), null_mut());
     assert_eq!(status, fmi2Status::OK, "{:?}", fmu.messages());
     unsafe { assert_eq!(fmi2FreeFMUstate(fmu.c, &mut out), fmi2Status::OK) };
+    // Finite fields whose outputs are not (energy_error overflows, E_kin of v = 1e200): a
+    // well-formed state, refused when set, and the instance stays as it was.
+    let crafts: [Craft; 2] = [
+        |d| {
+            let e = &mut d.snapshot.as_mut().unwrap().energy;
+            (e.initial_energy, e.external_work) = (-1.7e308, -1.7e308);
+        },
+        |d| d.snapshot.as_mut().unwrap().velocities[4] = 1e200,
+    ];
+    for (craft, part) in crafts.into_iter().zip(["energy_error", "E_kin"]) {
+        let mut d = base.clone();
+        craft(&mut d);
+        let (status, mut s) = deserialize(&fmu, &as_c(&serialize_data(&fmu, &d)), null_mut());
+        assert_eq!(status, fmi2Status::OK, "{:?}", fmu.messages());
+        let set = unsafe { fmi2SetFMUstate(fmu.c, s) };
+        fmu.expect_error(set, &["fmi2SetFMUstate", "non-finite", part]);
+        unsafe { assert_eq!(fmi2FreeFMUstate(fmu.c, &mut s), fmi2Status::OK) };
+    }
     same_as_twin(&fmu, &twin);
 }
 
@@ -249,31 +234,6 @@ fn deserialize_never_reads_its_output_argument() {
 
 // ----- state handles --------------------------------------------------------------------------
 
-/// Every function that takes a state refuses `h` with a message containing `part`.
-fn refused_everywhere(fmu: &Fmu, h: fmi2FMUstate, part: &str) {
-    let mut size = 0usize;
-    let mut buf = [0 as fmi2Byte; 16];
-    let mut slot = h;
-    unsafe {
-        fmu.expect_error(
-            fmi2SetFMUstate(fmu.c, h),
-            &["fmi2SetFMUstate: FMUstate", part],
-        );
-        fmu.expect_error(
-            fmi2FreeFMUstate(fmu.c, &mut slot),
-            &["fmi2FreeFMUstate", part],
-        );
-        assert_eq!(slot, h, "a refused free leaves the host's handle alone");
-        fmu.expect_error(fmi2SerializedFMUstateSize(fmu.c, h, &mut size), &[part]);
-        fmu.expect_error(
-            fmi2SerializeFMUstate(fmu.c, h, buf.as_mut_ptr(), 16),
-            &[part],
-        );
-    }
-    assert_eq!(size, 0);
-    assert!(buf.iter().all(|&b| b == 0));
-}
-
 #[test]
 fn freed_foreign_and_garbage_handles_are_refused_before_use() {
     let (fmu, twin, other) = (running(), running(), running());
@@ -297,6 +257,43 @@ fn freed_foreign_and_garbage_handles_are_refused_before_use() {
     refused_everywhere(&fmu, 0x10 as fmi2FMUstate, not_live);
     refused_everywhere(&fmu, 0xdead_beef_0001 as fmi2FMUstate, not_live);
     unsafe { fmu.expect_error(fmi2SetFMUstate(fmu.c, null_mut()), &["FMUstate is NULL"]) };
+    same_as_twin(&fmu, &twin);
+}
+
+/// Handles are tokens that never come back: after 1000 states got and freed (far more than any
+/// allocator-reuse window), every stale handle is still refused, also while newer states are
+/// live, and a held state is still updated in place under its own handle.
+#[test]
+fn stale_handles_stay_refused_however_many_states_follow() {
+    let (fmu, twin) = (running(), running());
+    let mut held = get_state(&fmu);
+    let (held_before, bytes) = (held, serialize(&fmu, held));
+    let mut stale = std::collections::HashSet::new();
+    for k in 0..1000 {
+        let mut s = match k % 2 {
+            0 => get_state(&fmu),
+            _ => deserialize(&fmu, &bytes, null_mut()).1,
+        };
+        assert!(
+            stale.insert(s as usize) && s != held,
+            "handle {s:p} given out twice"
+        );
+        unsafe { assert_eq!(fmi2FreeFMUstate(fmu.c, &mut s), fmi2Status::OK) };
+        unsafe { assert_eq!(fmi2GetFMUstate(fmu.c, &mut held), fmi2Status::OK) };
+        assert_eq!(
+            held, held_before,
+            "fmi2GetFMUstate updates its own state in place"
+        );
+    }
+    let live: Vec<_> = (0..100).map(|_| get_state(&fmu)).collect();
+    assert!(live.iter().all(|h| !stale.contains(&(*h as usize))));
+    for &h in &stale {
+        refused_everywhere(
+            &fmu,
+            h as fmi2FMUstate,
+            "not a live FMU state of this instance",
+        );
+    }
     same_as_twin(&fmu, &twin);
 }
 

@@ -184,6 +184,39 @@ fn good_scene_and_repository_scenes_parse() {
     }
 }
 
+/// `elements` declares the fewest and the most elements in [2, 100000] that put every support on
+/// a node, and both are accepted; the counts just outside are refused when set.
+#[test]
+fn elements_declares_the_counts_the_supports_allow() {
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let three = Scene::load(repo.join("examples/ThreeSpan.toml")).unwrap();
+    let off =
+        GOOD.replacen("at = 1.0", "at = 0.35", 1)
+            .replacen("elements = 10", "elements = 20", 1);
+    let cases = [
+        (Scene::parse(GOOD, "good.toml").unwrap(), (2, 100_000)),
+        (three, (3, 99_999)), // supports at 1/3 and 2/3: multiples of 3
+        (Scene::parse(&off, "off.toml").unwrap(), (20, 100_000)), // at 0.35 = 7/20
+    ];
+    for (scene, (lo, hi)) in cases {
+        assert_eq!(scene.element_range(), Some((lo, hi)), "{}", scene.name);
+        let (_, p) = scene.param("elements").unwrap();
+        assert_eq!(
+            (p.range.min, p.range.max),
+            (Some(lo as f64), Some(hi as f64))
+        );
+        let xml = georod::packaging::model_description::model_description(&scene).xml;
+        assert!(xml.contains(&format!(r#"<Integer min="{lo}" max="{hi}" start="#)));
+        for n in [lo, hi] {
+            scene.values_with([("elements", n as f64)]).unwrap();
+        }
+        for n in [lo - 1, hi + 1] {
+            let e = scene.values_with([("elements", n as f64)]).unwrap_err();
+            assert!(e.to_string().contains(&format!("[{lo}, {hi}]")), "{e}");
+        }
+    }
+}
+
 #[test]
 fn bad_scene_files_are_refused_with_the_file_and_the_key() {
     for (what, text, parts) in bad_files() {

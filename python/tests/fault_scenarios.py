@@ -1,6 +1,6 @@
 """The hostile scenarios of test_fmu_fault_injection.py, each run in its own process:
 
-    python fault_scenarios.py SCENARIO UNZIPDIR [--elements N] [--sample K] [--masks 0x01,0xff]
+    python fault_scenarios.py SCENARIO UNZIPDIR [--elements N] [--sample K] [--masks 0x01,0xff|all]
 
 SCENARIO: corrupt (single-byte flips), truncate, crafted (re-signed states with bad fields),
 handles (stale, double-freed, foreign, garbage, NULL), stoptime. Prints the JSON summary of
@@ -27,7 +27,8 @@ DESER = "fmi2DeSerializeFMUstate"
 
 def corrupt(fmu: Fmu, check: Checker, elements: int, sample: int, masks: list[int]) -> None:
     """Every header byte and `sample` other positions (all when 0 or more than there are), each
-    XORed with each mask: refused, the output slot untouched, the instance like its twin."""
+    XORed with each mask (masks 1..255: every one of the 255 other values of the byte): refused,
+    the output slot untouched, the instance like its twin."""
     host, twin = pair(fmu, elements)
     keep, blob = good_state(host)
     head = header_end(blob)
@@ -112,6 +113,11 @@ def handles(fmu: Fmu, check: Checker) -> None:
     s, _ = good_state(host)
     status, cleared = host.free_state(s)
     check(status == OK and cleared is None, "freeing a live state")
+    # Handles are never reused: many states got and freed after `s` leave it stale for good.
+    for _ in range(200):
+        status, t = host.get_state()
+        check(status == OK and t != s, "a freed handle was given out again")
+        check(host.free_state(t)[0] == OK, "freeing a live state")
     junk = create_string_buffer(bytes(range(256)) * 2, 512)
     bad = {
         "stale": s,
@@ -203,11 +209,14 @@ def main() -> None:
     p.add_argument("unzipdir", type=Path)
     p.add_argument("--elements", type=int, default=10)
     p.add_argument("--sample", type=int, default=0, help="positions after the header; 0: all")
-    p.add_argument("--masks", default="0x01,0xff")
+    p.add_argument(
+        "--masks", default="0x01,0xff", help="XOR masks in hex, or all: 0x01 to 0xff"
+    )
     a = p.parse_args()
     fmu, check = Fmu(a.unzipdir), Checker()
     if a.scenario == "corrupt":
-        masks = [int(m, 16) for m in a.masks.split(",")]
+        every = a.masks == "all"
+        masks = list(range(1, 256)) if every else [int(m, 16) for m in a.masks.split(",")]
         corrupt(fmu, check, a.elements, a.sample, masks)
     else:
         SCENARIOS[a.scenario](fmu, check)

@@ -223,9 +223,16 @@ int main(int argc, char **argv) {
     free(bytes);
     EXPECT(fmi2GetRealStatus(c, fmi2LastSuccessfulTime, &t_last), fmi2OK);
 
-    /* stale and double-freed handles: refused, nothing read */
+    /* stale and double-freed handles: refused, nothing read, also after many more states came
+       and went (handles are tokens that are never given out again) */
     fmi2FMUstate stale = state;
     EXPECT(fmi2FreeFMUstate(c, &state), fmi2OK);
+    for (int k = 0; k < 100; k++) {
+        fmi2FMUstate tmp = NULL;
+        EXPECT(fmi2GetFMUstate(c, &tmp), fmi2OK);
+        if (tmp == stale) failures++;
+        EXPECT(fmi2FreeFMUstate(c, &tmp), fmi2OK);
+    }
     EXPECT(fmi2SetFMUstate(c, stale), fmi2Error);
     EXPECT(fmi2SerializedFMUstateSize(c, stale, &size), fmi2Error);
     EXPECT(fmi2FreeFMUstate(c, &stale), fmi2Error);

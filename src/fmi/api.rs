@@ -394,8 +394,8 @@ pub unsafe extern "C" fn fmi2SetString(
 
 // ----- FMU state ------------------------------------------------------------------------------
 //
-// A state handle is checked against the instance's registry (`inst.states`) before it is used:
-// freed, foreign and garbage handles are refused without reading the memory they point to.
+// A state handle is an opaque token, looked up in the instance's registry (`inst.states`) before
+// it is used: freed, foreign and garbage handles are refused, and never dereferenced.
 
 /// Takes a copy of the instance's state. `*FMUstate` NULL: a new state. `*FMUstate` a live state
 /// of this instance: updated in place (FMI 2.0 section 2.1.8). Anything else breaks the
@@ -423,7 +423,7 @@ pub unsafe extern "C" fn fmi2GetFMUstate(
             ));
             replaced_foreign = true;
         }
-        *slot = inst.states.add(data);
+        *slot = inst.states.add(data)?;
         Ok(())
     });
     if status == fmi2Status::OK && replaced_foreign {
@@ -519,7 +519,7 @@ pub unsafe extern "C" fn fmi2DeSerializeFMUstate(
         let bytes = input(serializedState as *const u8, size, "serializedState")?;
         let slot = out_ref(FMUstate, "FMUstate")?;
         let data = inst.deserialize_state(bytes)?;
-        *slot = inst.states.add(data);
+        *slot = inst.states.add(data)?;
         inst.log
             .event(|| format!("FMU state deserialized ({size} bytes)"));
         Ok(())

@@ -15,7 +15,8 @@
 //! - [`values`]: getting and setting variables;
 //! - [`fmu_state`]: FMU state snapshots and their serialized, self-checking form;
 //! - [`state_check`]: field checks of a deserialized state;
-//! - [`state_registry`]: the state handles an instance gave out (checked before any use);
+//! - [`state_registry`]: the state handles an instance gave out (opaque tokens, never reused,
+//!   checked before any use);
 //! - [`api`]: the exported `extern "C"` functions;
 //! - [`uri`]: `fmuResourceLocation` parsing.
 pub mod api;

@@ -1,34 +1,50 @@
 //! The FMU states one instance has handed out (`fmi2GetFMUstate`, `fmi2DeSerializeFMUstate`).
 //!
-//! A handle is the address of a state this registry owns. Every handle a host passes in is
-//! looked up here by its value before anything is read: a handle that was freed, belongs to
-//! another instance, or was never given out is refused without touching the memory it points to
-//! (it may be unmapped). The registry owns its states, so they go with the instance
-//! (`fmi2FreeInstance` frees the ones the host did not).
-//!
-//! Freed slots are kept allocated (their data dropped) for the next [`QUARANTINE`] frees, so that
-//! the allocator cannot give a freed address straight to the next state: a stale handle stays
-//! detectable for that long. After that an address may come back; a stale handle then names a
-//! live state of this same instance, which is memory safe but cannot be told apart.
+//! A handle is an opaque token, not an address: a number drawn from one process-wide counter
+//! (so no two states of any instance ever get the same token, and a token is never given out
+//! again after its state is freed), made into a pointer value that no allocation can have. The
+//! registry maps tokens to the states it owns. Every handle a host passes in is looked up here
+//! by its value, and nothing else is done with it: a handle that was freed (however many states
+//! came and went since), freed twice, belongs to another instance, or was never given out is
+//! refused, and no memory it might point to is ever touched. The registry owns its states, so
+//! they go with the instance (`fmi2FreeInstance` frees the ones the host did not).
 use super::fmu_state::StateData;
 use super::instance::{error, FmiResult};
 use super::types::fmi2FMUstate;
-use std::collections::{HashMap, VecDeque};
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Freed slots kept allocated before their address may be reused.
-pub const QUARANTINE: usize = 64;
+/// The serial number of the next token (process-wide; 0 is never used: a token is non-null).
+static NEXT: AtomicU64 = AtomicU64::new(1);
 
-type Slot = Box<Option<StateData>>;
+/// Tokens are `TAG | serial`, serial < `SERIALS`. On 64-bit targets TAG sets bits above bit 47
+/// (bit 63 clear), so a token is not a canonical user or kernel address on x86-64 or aarch64:
+/// no pointer a host holds (from malloc, the stack, a mapping) has a token's value.
+#[cfg(target_pointer_width = "64")]
+const TAG: usize = 0x4745_0000_0000_0000;
+#[cfg(target_pointer_width = "64")]
+const SERIALS: u64 = 1 << 48;
+#[cfg(not(target_pointer_width = "64"))]
+const TAG: usize = 0;
+#[cfg(not(target_pointer_width = "64"))]
+const SERIALS: u64 = usize::MAX as u64;
+
+/// A fresh token, or `None` once the process has used up every serial (2^48 on 64-bit targets:
+/// at a million states a second, about nine years). Tokens are never reused, not even then.
+fn new_token() -> Option<usize> {
+    let serial = NEXT.fetch_add(1, Ordering::Relaxed);
+    (serial < SERIALS).then_some(TAG | serial as usize)
+}
+
+/// The handle of a token: an integer made into a pointer, never dereferenced (it carries no
+/// provenance; hosts treat `fmi2FMUstate` as opaque, and so does the FMU).
+fn handle(token: usize) -> fmi2FMUstate {
+    token as fmi2FMUstate
+}
 
 #[derive(Default)]
 pub struct StateRegistry {
-    live: HashMap<usize, Slot>,
-    freed: VecDeque<Slot>,
-}
-
-/// `0x...` for messages.
-fn show(h: fmi2FMUstate) -> String {
-    format!("{h:p}")
+    live: HashMap<usize, StateData>,
 }
 
 impl StateRegistry {
@@ -46,12 +62,16 @@ impl StateRegistry {
         self.live.contains_key(&(h as usize))
     }
 
-    /// Stores `data` and returns its new handle.
-    pub fn add(&mut self, data: StateData) -> fmi2FMUstate {
-        let slot: Slot = Box::new(Some(data));
-        let h = &*slot as *const Option<StateData> as fmi2FMUstate;
-        self.live.insert(h as usize, slot);
-        h
+    /// Stores `data` under a new token and returns its handle.
+    pub fn add(&mut self, data: StateData) -> FmiResult<fmi2FMUstate> {
+        let Some(token) = new_token() else {
+            return error(format!(
+                "no FMU state handle left: this process has given out all {SERIALS} (handles \
+                 are never reused)"
+            ));
+        };
+        self.live.insert(token, data);
+        Ok(handle(token))
     }
 
     fn refuse<T>(&self, h: fmi2FMUstate, arg: &str) -> FmiResult<T> {
@@ -62,47 +82,38 @@ impl StateRegistry {
             ));
         }
         error(format!(
-            "{arg} = {} is not a live FMU state of this instance (already freed, another \
+            "{arg} = {h:p} is not a live FMU state of this instance (already freed, another \
              instance's, or never returned by its fmi2GetFMUstate / fmi2DeSerializeFMUstate); \
-             it was not used",
-            show(h)
+             it was not used"
         ))
     }
 
     /// The state behind `h`, or an error naming `arg` when `h` is not one of ours.
     pub fn get(&self, h: fmi2FMUstate, arg: &str) -> FmiResult<&StateData> {
-        match self
-            .live
-            .get(&(h as usize))
-            .and_then(|s| s.as_ref().as_ref())
-        {
+        match self.live.get(&(h as usize)) {
             Some(data) => Ok(data),
             None => self.refuse(h, arg),
         }
     }
 
-    /// Replaces the data of the live state `h` (fmi2GetFMUstate updating a state in place).
+    /// Replaces the data of the live state `h` (fmi2GetFMUstate updating a state in place: the
+    /// handle stays the same).
     pub fn replace(&mut self, h: fmi2FMUstate, data: StateData, arg: &str) -> FmiResult {
         match self.live.get_mut(&(h as usize)) {
             Some(slot) => {
-                **slot = Some(data);
+                *slot = data;
                 Ok(())
             }
             None => self.refuse(h, arg),
         }
     }
 
-    /// Frees the live state `h`.
+    /// Frees the live state `h`; its token is dead for good.
     pub fn free(&mut self, h: fmi2FMUstate, arg: &str) -> FmiResult {
-        let Some(mut slot) = self.live.remove(&(h as usize)) else {
-            return self.refuse(h, arg);
-        };
-        *slot = None; // the snapshot's vectors go now; the small slot stays in quarantine
-        self.freed.push_back(slot);
-        if self.freed.len() > QUARANTINE {
-            self.freed.pop_front();
+        match self.live.remove(&(h as usize)) {
+            Some(_) => Ok(()),
+            None => self.refuse(h, arg),
         }
-        Ok(())
     }
 }
 
@@ -124,18 +135,24 @@ mod tests {
     }
 
     #[test]
-    fn handles_are_checked_by_value_and_freed_ones_are_not_reused_at_once() {
-        let mut r = StateRegistry::default();
-        let a = r.add(data());
-        assert!(r.owns(a) && r.get(a, "FMUstate").is_ok());
+    fn tokens_are_checked_by_value_and_never_come_back() {
+        let (mut r, mut other) = (StateRegistry::default(), StateRegistry::default());
+        let a = r.add(data()).unwrap();
+        assert!(!a.is_null() && r.owns(a) && r.get(a, "FMUstate").is_ok());
         r.free(a, "FMUstate").unwrap();
         assert!(!r.owns(a));
         assert!(r.free(a, "FMUstate").is_err(), "double free");
         assert!(r.get(a, "FMUstate").is_err(), "use after free");
-        // The quarantine keeps `a`'s address out of the next QUARANTINE allocations.
-        let fresh: Vec<_> = (0..QUARANTINE).map(|_| r.add(data())).collect();
-        assert!(fresh.iter().all(|&h| h != a));
-        assert_eq!(r.len(), QUARANTINE);
+        let mut seen = std::collections::HashSet::from([a as usize]);
+        for _ in 0..1000 {
+            let h = r.add(data()).unwrap();
+            let theirs = other.add(data()).unwrap();
+            assert!(seen.insert(h as usize) && seen.insert(theirs as usize));
+            assert!(!other.owns(h) && !r.owns(theirs), "tokens are process-wide");
+            r.free(h, "FMUstate").unwrap();
+        }
+        assert!(r.is_empty() && other.len() == 1000);
+        assert!(r.get(a, "FMUstate").is_err());
         let garbage = 0x10 as fmi2FMUstate;
         assert!(r.get(garbage, "FMUstate").is_err());
         assert!(r.get(std::ptr::null_mut(), "FMUstate").is_err());

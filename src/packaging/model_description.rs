@@ -230,10 +230,12 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
         if let Some(u) = &v.unit {
             let _ = write!(attrs, r#" unit="{}""#, escape(u));
         }
-        if let Some(m) = v.range.min {
+        // The extreme values accepted (FMI 2.0 bounds are inclusive; an open end is declared
+        // as the double next to it inside).
+        if let Some(m) = v.range.declared_min() {
             let _ = write!(attrs, r#" min="{}""#, number(v, m));
         }
-        if let Some(m) = v.range.max {
+        if let Some(m) = v.range.declared_max() {
             let _ = write!(attrs, r#" max="{}""#, number(v, m));
         }
         if let Some(s) = v.start {
@@ -275,7 +277,7 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
 type Item = (&'static str, i32, &'static str);
 
 /// The enumeration types: (name, description, items).
-const ENUMERATIONS: [(&str, &str, &[Item]); 2] = [
+const ENUMERATIONS: [(&str, &str, &[Item]); 1] = [
     (
         "Integrator",
         "Time integration scheme",
@@ -286,14 +288,6 @@ const ENUMERATIONS: [(&str, &str, &[Item]); 2] = [
                 2,
                 "Energy-momentum scheme (discrete gradient, Cayley rotations): conserves energy, linear and angular momentum",
             ),
-        ],
-    ),
-    (
-        "Well",
-        "Initial equilibrium, by the sign of the branch sensor",
-        &[
-            ("down", -1, "The branch sensor negative"),
-            ("up", 1, "The branch sensor positive"),
         ],
     ),
 ];

@@ -213,7 +213,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     let initial = initial(&c, &raw, &sensors, &params)?;
     let model = model(&c, &raw)?;
 
-    let scene = Scene {
+    let mut scene = Scene {
         name,
         description: raw.description.trim().to_string(),
         experiment,
@@ -248,6 +248,10 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     if let Err(e) = scene.check_mesh(scene.defaults().elements()) {
         return c.err("defaults.elements", e.message);
     }
+    // The declared range of `elements`: from the fewest to the most elements that put every
+    // support on a node (the default does, so there are some).
+    let (lo, hi) = scene.element_range().expect("the default count works");
+    scene.params[super::Std::Elements as usize].range = Range::between(lo as f64, hi as f64);
     Ok(scene)
 }
 

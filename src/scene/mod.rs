@@ -337,7 +337,7 @@ impl Scene {
                 2 * base,
                 3 * base
             ),
-            None => "no element count up to 100000 puts every support on a node".to_string(),
+            None => format!("no element count up to {MAX_ELEMENTS} puts every support on a node"),
         };
         Err(params::refuse(
             params::ELEMENTS,
@@ -350,9 +350,28 @@ impl Scene {
 
     /// The smallest element count that puts every support on a node (all multiples work).
     pub fn node_counts(&self) -> Option<usize> {
-        (1..=100_000).find(|&n| self.supports.iter().all(|s| on_node(s.at, n)))
+        (1..=MAX_ELEMENTS).find(|&n| self.supports_on_nodes(n))
+    }
+
+    fn supports_on_nodes(&self, elements: usize) -> bool {
+        self.supports.iter().all(|s| on_node(s.at, elements))
+    }
+
+    /// The smallest and the largest element count in [`MIN_ELEMENTS`, `MAX_ELEMENTS`] that put
+    /// every support on a node: the declared range of `elements`, whose bounds are accepted.
+    /// `None` if no count does.
+    pub fn element_range(&self) -> Option<(usize, usize)> {
+        let lo = (MIN_ELEMENTS..=MAX_ELEMENTS).find(|&n| self.supports_on_nodes(n))?;
+        let hi = (lo..=MAX_ELEMENTS)
+            .rev()
+            .find(|&n| self.supports_on_nodes(n))?;
+        Some((lo, hi))
     }
 }
+
+/// The widest range of `elements` (a scene declares the part of it its supports allow).
+pub const MIN_ELEMENTS: usize = 2;
+pub const MAX_ELEMENTS: usize = 100_000;
 
 /// Whether station `at` (a fraction of the length) is a node of `elements` equal elements.
 pub fn on_node(at: f64, elements: usize) -> bool {

@@ -58,7 +58,31 @@ impl Range {
         }
     }
 
-    /// The range in words, e.g. `[-0.999, 0.5]` or `>= 0`; `None` if any finite value goes.
+    /// The open interval `(min, max)`: both ends refused. Declared (FMI 2.0 bounds are
+    /// inclusive) as the doubles next to them inside, [`Range::declared_min`] and
+    /// [`Range::declared_max`], so the declared bounds are exactly the extreme values accepted.
+    pub const fn open(min: f64, max: f64) -> Range {
+        Range {
+            min: Some(min),
+            max: Some(max),
+            min_exclusive: true,
+            max_exclusive: true,
+        }
+    }
+
+    /// The smallest value accepted, as declared in `min` (for Real variables).
+    pub fn declared_min(&self) -> Option<f64> {
+        let m = self.min?;
+        Some(if self.min_exclusive { next_up(m) } else { m })
+    }
+
+    /// The largest value accepted, as declared in `max` (for Real variables).
+    pub fn declared_max(&self) -> Option<f64> {
+        let m = self.max?;
+        Some(if self.max_exclusive { -next_up(-m) } else { m })
+    }
+
+    /// The range in words, e.g. `(-1, 0.5)`, `[2, 5]` or `>= 0`; `None` if any finite value goes.
     pub fn text(&self) -> Option<String> {
         if *self == Range::positive() {
             return Some(format!(
@@ -98,6 +122,15 @@ impl Range {
         });
         value.is_finite() && above && below
     }
+}
+
+/// The next double above the finite `x` (`f64::next_up`, stable only from Rust 1.86).
+fn next_up(x: f64) -> f64 {
+    if x == 0.0 {
+        return f64::from_bits(1); // the smallest subnormal
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
 }
 
 /// One parameter of a scene.
@@ -155,7 +188,7 @@ impl Param {
             ));
         }
         if self.name == WELL && value == 0.0 {
-            return Err(refuse(WELL, "must be +1 or -1, not 0"));
+            return Err(refuse(WELL, "0 is not allowed: must be +1 or -1"));
         }
         Ok(())
     }
@@ -206,8 +239,8 @@ const ALWAYS: [Standard; 10] = [
         "1",
         "Poisson's ratio (shear modulus G = E / (2 (1 + nu)))",
         0.2,
-        // nu -> -1 makes G infinite; nu = 0.5 (G = E/3) is fine for a rod.
-        Range::between(-0.999, 0.5),
+        // The open interval of an isotropic material (docs/scenes.md): nu = -1 makes G infinite.
+        Range::open(-1.0, 0.5),
     ),
     real("rho", 2, "kg/m3", "Mass density", 1.0e-6, Range::positive()),
     real(
@@ -250,7 +283,8 @@ const ALWAYS: [Standard; 10] = [
         unit: None,
         description: "Number of finite elements (supports must fall on nodes)",
         start: 10.0,
-        range: Range::between(2.0, 100_000.0),
+        // Narrowed per scene to the counts its supports allow (`Scene::element_range`).
+        range: Range::between(super::MIN_ELEMENTS as f64, super::MAX_ELEMENTS as f64),
     },
     real(
         "dt_max",
@@ -308,11 +342,11 @@ const RISE: Standard = real(
     Range::positive(),
 );
 
-/// Present when the initial state picks a branch (an enumeration: -1 down, +1 up).
+/// Present when the initial state picks a branch: an Integer in [-1, 1], 0 refused.
 const BRANCH: Standard = Standard {
     name: WELL,
     vr: 12,
-    var_type: VarType::Enumeration,
+    var_type: VarType::Integer,
     variability: Variability::Fixed,
     unit: None,
     description: "Initial equilibrium: +1 or -1, the sign of the branch sensor in it",
@@ -477,6 +511,15 @@ mod tests {
             .unwrap()
             .starts_with("> 0 (>= 2.2250738585072014e-308"));
         assert_eq!(Range::between(2.0, 5.0).text().unwrap(), "[2, 5]");
+        let open = Range::open(-1.0, 0.5);
+        assert_eq!(open.text().unwrap(), "(-1, 0.5)");
+        let (lo, hi) = (open.declared_min().unwrap(), open.declared_max().unwrap());
+        assert_eq!((lo, hi), (-0.9999999999999999, 0.49999999999999994));
+        assert!(lo > -1.0 && hi < 0.5 && open.admits(lo) && open.admits(hi));
+        assert!(!open.admits(-1.0) && !open.admits(0.5));
+        // Nothing lies between a declared bound and the excluded end.
+        assert_eq!((next_up(-1.0), next_up(hi)), (lo, 0.5));
+        assert_eq!(next_up(0.0), 5e-324);
         assert!(Range::positive().admits(1e-300));
         assert!(!Range::positive().admits(0.0));
         assert!(!Range::ANY.admits(f64::NAN));

@@ -212,13 +212,7 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
             start: Some(p.start),
             range: p.range,
             role: Role::Parameter(i),
-            declared_type: (p.var_type == VarType::Enumeration).then_some(
-                if p.name == super::params::WELL {
-                    "Well"
-                } else {
-                    "Integrator"
-                },
-            ),
+            declared_type: (p.var_type == VarType::Enumeration).then_some("Integrator"),
         });
     }
     for (i, input) in scene.inputs.iter().enumerate() {

@@ -1,5 +1,6 @@
 //! What a simulation reports, by output id: sensors and shape samples read from the state with
 //! the shape functions, support reactions, energies and the energy ledger.
+use super::snapshot::EnergyLedger;
 use super::Simulation;
 use crate::scene::variables::{OutputId, StandardOutput};
 
@@ -66,13 +67,7 @@ impl Simulation {
 
     /// `E_kin + E_strain - E(0) - W_ext - W_ctrl - W_supports + E_damped`.
     pub fn energy_error(&self) -> f64 {
-        let e = self.energy();
-        self.kinetic_energy() + self.strain_energy()
-            - e.initial_energy
-            - e.external_work
-            - e.input_work
-            - e.support_work
-            + e.dissipated
+        energy_error(self.kinetic_energy(), self.strain_energy(), self.energy())
     }
 
     fn standard_output(&self, s: StandardOutput) -> f64 {
@@ -120,15 +115,11 @@ impl Simulation {
         Ok(())
     }
 
-    /// The trial's kinetic and strain energy, if finite.
+    /// The trial's kinetic and strain energy, if they and the energy error are finite.
     pub(super) fn trial_energies(&self) -> Result<(f64, f64), &'static str> {
         let kinetic = self.setup.rod.kinetic_energy(&self.trial.v);
         let strain = self.setup.rod.strain_energy(&self.trial.u);
-        if kinetic.is_finite() && strain.is_finite() {
-            Ok((kinetic, strain))
-        } else {
-            Err("kinetic or strain energy")
-        }
+        finite_energies(kinetic, strain, &self.trial_energy)
     }
 
     /// Every output finite (checked once, for the initial state: geometry and parameters that
@@ -143,9 +134,52 @@ impl Simulation {
             }
         }
         let blown = |x: &f64| x.abs() > BLOWN_UP;
-        if self.state().u.iter().any(blown) {
-            return Err("displacement (beyond 1e100)".to_string());
+        if self.state().u.iter().chain(&self.state().v).any(blown) {
+            return Err("displacement or velocity (beyond 1e100)".to_string());
         }
         Ok(())
+    }
+}
+
+/// `E_kin + E_strain - E(0) - W_ext - W_ctrl - W_supports + E_damped`: the `energy_error` output.
+fn energy_error(kinetic: f64, strain: f64, e: &EnergyLedger) -> f64 {
+    kinetic + strain - e.initial_energy - e.external_work - e.input_work - e.support_work
+        + e.dissipated
+}
+
+/// The energies after a step, if they are finite and so is the energy error they make with the
+/// ledger: a sum of finite terms can still overflow, and no output of a successful step may be
+/// infinite.
+fn finite_energies(
+    kinetic: f64,
+    strain: f64,
+    ledger: &EnergyLedger,
+) -> Result<(f64, f64), &'static str> {
+    if !(kinetic.is_finite() && strain.is_finite()) {
+        return Err("kinetic or strain energy");
+    }
+    if !energy_error(kinetic, strain, ledger).is_finite() {
+        return Err("energy_error (its finite terms overflow)");
+    }
+    Ok((kinetic, strain))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn energies_whose_error_overflows_are_refused() {
+        let ledger = EnergyLedger {
+            external_work: -1e308,
+            ..EnergyLedger::default()
+        };
+        assert_eq!(finite_energies(1.0, 2.0, &ledger), Ok((1.0, 2.0)));
+        // Every term finite, the sum is not.
+        assert!(energy_error(1e308, 0.0, &ledger).is_infinite());
+        assert!(finite_energies(1e308, 0.0, &ledger).is_err());
+        assert!(finite_energies(0.9e308, 0.9e308, &EnergyLedger::default()).is_err());
+        assert!(finite_energies(f64::INFINITY, 0.0, &EnergyLedger::default()).is_err());
+        assert!(finite_energies(0.0, f64::NAN, &EnergyLedger::default()).is_err());
     }
 }

@@ -126,7 +126,9 @@ impl Simulation {
         }
     }
 
-    /// Continues from a snapshot of a simulation of the same scene and fixed parameters.
+    /// Continues from a snapshot of a simulation of the same scene and fixed parameters. On an
+    /// error the simulation may be partly changed: restore a snapshot of its own (as the FMU
+    /// does) or drop it.
     pub fn restore(&mut self, s: &Snapshot) -> Result<(), SimError> {
         let bad = |why: String| Err(SimError::BadSnapshot(why));
         if s.version != SNAPSHOT_VERSION {
@@ -203,7 +205,10 @@ impl Simulation {
         self.energy = s.energy;
         self.energies.set(None);
         self.analysis.restore(&self.values, s.lyapunov.as_ref());
-        Ok(())
+        // Finite numbers can still make outputs that are not (a huge velocity, a ledger whose
+        // sum overflows): such a snapshot is refused like a non-finite one.
+        self.check_outputs()
+            .map_err(|what| SimError::BadSnapshot(format!("it gives a non-finite {what}")))
     }
 
     /// Back to the initial state at `t = 0`, with the values and inputs it was built with.

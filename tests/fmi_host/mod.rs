@@ -319,3 +319,69 @@ pub fn run(fmu: &Fmu, n: usize) -> Vec<Vec<u64>> {
         })
         .collect()
 }
+
+// ----- FMU states ----------------------------------------------------------------------------
+
+/// A new FMU state of the instance (fmi2GetFMUstate into a NULL slot).
+pub fn get_state(fmu: &Fmu) -> fmi2FMUstate {
+    let mut s: fmi2FMUstate = std::ptr::null_mut();
+    assert_eq!(unsafe { fmi2GetFMUstate(fmu.c, &mut s) }, fmi2Status::OK);
+    s
+}
+
+/// The serialized bytes of state `s`.
+pub fn serialize(fmu: &Fmu, s: fmi2FMUstate) -> Vec<fmi2Byte> {
+    let mut size = 0;
+    let mut bytes = unsafe {
+        assert_eq!(
+            fmi2SerializedFMUstateSize(fmu.c, s, &mut size),
+            fmi2Status::OK
+        );
+        vec![0 as fmi2Byte; size]
+    };
+    let status = unsafe { fmi2SerializeFMUstate(fmu.c, s, bytes.as_mut_ptr(), size) };
+    assert_eq!(status, fmi2Status::OK, "{:?}", fmu.messages());
+    bytes
+}
+
+/// Deserializes into a slot that holds `slot` on entry; returns the status and the slot after.
+pub fn deserialize(
+    fmu: &Fmu,
+    bytes: &[fmi2Byte],
+    slot: fmi2FMUstate,
+) -> (fmi2Status, fmi2FMUstate) {
+    let mut out = slot;
+    let status = unsafe { fmi2DeSerializeFMUstate(fmu.c, bytes.as_ptr(), bytes.len(), &mut out) };
+    (status, out)
+}
+
+/// Asserts the instance steps on exactly like its twin (both advance one step).
+pub fn same_as_twin(fmu: &Fmu, twin: &Fmu) {
+    assert_eq!(fmu.time(), twin.time());
+    assert_eq!(run(fmu, 1), run(twin, 1), "{:?}", fmu.messages());
+}
+
+/// Every function that takes a state refuses `h` with a message containing `part`.
+pub fn refused_everywhere(fmu: &Fmu, h: fmi2FMUstate, part: &str) {
+    let mut size = 0usize;
+    let mut buf = [0 as fmi2Byte; 16];
+    let mut slot = h;
+    unsafe {
+        fmu.expect_error(
+            fmi2SetFMUstate(fmu.c, h),
+            &["fmi2SetFMUstate: FMUstate", part],
+        );
+        fmu.expect_error(
+            fmi2FreeFMUstate(fmu.c, &mut slot),
+            &["fmi2FreeFMUstate", part],
+        );
+        assert_eq!(slot, h, "a refused free leaves the host's handle alone");
+        fmu.expect_error(fmi2SerializedFMUstateSize(fmu.c, h, &mut size), &[part]);
+        fmu.expect_error(
+            fmi2SerializeFMUstate(fmu.c, h, buf.as_mut_ptr(), 16),
+            &[part],
+        );
+    }
+    assert_eq!(size, 0);
+    assert!(buf.iter().all(|&b| b == 0));
+}

@@ -31,11 +31,11 @@ pub struct Options {
     pub help: bool,
 }
 
-fn positive(flag: &str, v: f64) -> Result<f64, String> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("{flag} {v}: must be a finite number > 0"))
+/// A step, time or length: a finite number > 0.
+fn positive(flag: &str, v: &str) -> Result<f64, String> {
+    match v.parse::<f64>() {
+        Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+        _ => Err(format!("{flag} {v}: must be a finite number > 0")),
     }
 }
 
@@ -66,7 +66,7 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
             v.parse::<f64>()
                 .ok()
                 .filter(|x| x.is_finite())
-                .ok_or_else(|| format!("{flag}: `{v}` is not a finite number"))
+                .ok_or_else(|| format!("{flag} {v}: must be a finite number"))
         };
         let pair = |v: &str| -> Result<(String, f64), String> {
             let (name, x) = v
@@ -78,19 +78,19 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
             v.parse::<usize>()
                 .ok()
                 .filter(|&n| n > 0)
-                .ok_or_else(|| format!("{flag}: `{v}` is not a whole number > 0"))
+                .ok_or_else(|| format!("{flag} {v}: must be a whole number > 0"))
         };
         match flag.as_str() {
             "-h" | "--help" => o.help = true,
             "--scene" => o.scene = Some(value()?.clone()),
             "--set" => o.overrides.push(pair(value()?)?),
             "--input" => o.inputs.push(pair(value()?)?),
-            "--step" | "--dt" => o.step = Some(positive(flag, number(value()?)?)?),
-            "--stop" => o.stop = Some(number(value()?)?),
+            "--step" | "--dt" => o.step = Some(positive(flag, value()?)?),
+            "--stop" => o.stop = Some(positive(flag, value()?)?),
             "--steps" => o.steps = Some(count(value()?)?),
             "--output" | "-o" => o.output = Some(value()?.clone()),
             "--lib" => o.lib = Some(value()?.clone()),
-            "--max-arc" => o.max_arc = Some(positive(flag, number(value()?)?)?),
+            "--max-arc" => o.max_arc = Some(positive(flag, value()?)?),
             "--imperfection" => o.imperfection = number(value()?)?,
             "--load-name" => o.load_name = Some(value()?.clone()),
             "--sensor" => o.sensor = Some(value()?.clone()),

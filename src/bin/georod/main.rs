@@ -59,7 +59,8 @@ const COMMANDS: [(&str, &str); 7] = [
 
 const NOTES: &str = "SCENE is a scene file, or the name of one in scenes/ (BuckledBeam, PinnedArch,
 ClampedArch, ...). Parameters and inputs are named as in the FMU (E, nu, F, Omega,
-pre_shortening, f_ctrl, ...).";
+pre_shortening, f_ctrl, ...). Steps, times, lengths (H, T, DT, MAX_LOAD, FRACTION) are finite
+numbers > 0, counts (N) whole numbers > 0. Exit status: 0 done, 1 failed, 2 a bad command line.";
 
 fn usage() -> String {
     let mut u =
@@ -257,55 +258,114 @@ fn demo(dir: &str) -> Result<(), String> {
     Ok(())
 }
 
-fn run(args: &[String]) -> Result<(), String> {
+/// Why `georod` stopped: a bad command line (exit status 2, like the Python tools' argparse),
+/// or a failure while doing what it was asked (1).
+enum Failure {
+    Usage(String),
+    Run(String),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Failure {
+        Failure::Run(message)
+    }
+}
+
+/// The most communication steps `simulate` takes (a guard against a typo in --stop or --step).
+const MAX_STEPS: f64 = 1e9;
+
+/// What the command line of `command` must have, checked before anything is read or run.
+fn check_command_line(command: &str, o: &Options) -> Result<(), String> {
+    let one_file = matches!(command, "fmu" | "check");
+    if one_file && o.positional.len() != 1 {
+        return Err(format!(
+            "{command} takes one scene file: georod {command} FILE.toml"
+        ));
+    }
+    if let (false, Some(extra)) = (one_file, o.positional.first()) {
+        return Err(format!(
+            "unexpected argument `{extra}` ({command} takes options only)"
+        ));
+    }
+    match command {
+        "simulate" => {
+            let step = o.step.ok_or("simulate needs --step H")?;
+            let stop = o.stop.ok_or("simulate needs --stop T")?;
+            let steps = (stop / step).round();
+            if steps < 1.0 {
+                return Err(format!(
+                    "--stop {stop} is less than half of --step {step}: there is no step to take"
+                ));
+            }
+            if steps > MAX_STEPS {
+                return Err(format!(
+                    "--stop {stop} / --step {step} = {steps:e} steps: at most {MAX_STEPS:e}"
+                ));
+            }
+        }
+        "bench-steps" => {
+            o.step.ok_or("bench-steps needs --dt DT")?;
+            o.steps.ok_or("bench-steps needs --steps N")?;
+        }
+        _ => {}
+    }
+    Ok(())
+}
+
+fn run(args: &[String]) -> Result<(), Failure> {
     let Some((command, rest)) = args.split_first() else {
-        return Err(usage());
+        return Err(Failure::Usage(usage()));
     };
     if matches!(command.as_str(), "-h" | "--help" | "help") {
         println!("{}", usage());
         return Ok(());
     }
-    let o = args::parse(rest)?;
+    let Some((_, help)) = COMMANDS.iter().find(|(name, _)| name == command) else {
+        return Err(Failure::Usage(format!(
+            "unknown command `{command}`\n{}",
+            usage()
+        )));
+    };
+    let usage_error = |e: String| Failure::Usage(format!("{e}\nusage: georod {help}"));
+    let o = args::parse(rest).map_err(usage_error)?;
     if o.help {
-        let (_, help) = COMMANDS
-            .iter()
-            .find(|(name, _)| name == command)
-            .ok_or_else(|| format!("unknown command `{command}`\n{}", usage()))?;
         println!("usage: georod {help}\n\n{NOTES}");
         return Ok(());
     }
+    check_command_line(command, &o).map_err(usage_error)?;
     match command.as_str() {
-        "fmu" => package(&o),
-        "check" => check(&o),
+        "fmu" => package(&o)?,
+        "check" => check(&o)?,
         "simulate" => {
-            let step = o.step.ok_or("simulate needs --step")?;
-            let stop = o.stop.ok_or("simulate needs --stop")?;
-            if stop < 0.0 {
-                return Err(format!("--stop {stop}: must be >= 0"));
-            }
+            let (step, stop) = (o.step.unwrap_or_default(), o.stop.unwrap_or_default());
             let mut sim = simulation(&o)?;
             let csv = trajectory(&mut sim, step, stop)?;
-            write_or_print(o.output.as_deref(), &csv)
+            write_or_print(o.output.as_deref(), &csv)?
         }
-        "bench-steps" => bench_steps(&o),
+        "bench-steps" => bench_steps(&o)?,
         "path" => {
             let csv = statics::static_path(&o)?;
-            write_or_print(o.output.as_deref(), &csv)
+            write_or_print(o.output.as_deref(), &csv)?
         }
         "modes" => {
             let csv = statics::modes(&o)?;
-            write_or_print(o.output.as_deref(), &csv)
+            write_or_print(o.output.as_deref(), &csv)?
         }
-        "demo" => demo(o.output.as_deref().unwrap_or("out")),
-        other => Err(format!("unknown command `{other}`\n{}", usage())),
+        "demo" => demo(o.output.as_deref().unwrap_or("out"))?,
+        other => unreachable!("`{other}` is in COMMANDS but has no arm"),
     }
+    Ok(())
 }
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
+        Err(Failure::Usage(e)) => {
+            eprintln!("georod: {e}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Run(e)) => {
             eprintln!("georod: {e}");
             ExitCode::FAILURE
         }
