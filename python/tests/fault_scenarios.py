@@ -77,13 +77,13 @@ def crafted(fmu: Fmu, check: Checker) -> None:
     tag = blob[head + 4]  # experiment.tolerance: Option<f64>
     start_at = head + 4 + 1 + (8 if tag else 0)
     e_at = blob.index(struct.pack("<Q", 1) + b"E") + 9
-    n = len(blob)
+    n = len(blob)  # the snapshot ends with the clock, then a None tag (no Lyapunov data)
     guid_flip = bytearray(blob)
     guid_flip[PREFIX_LEN + 9] ^= 0x01
     cases: list[tuple[str, bytes, str]] = [
         ("snapshot time NaN", f64_at(blob, st.u_offset - 16, math.nan), "snapshot time = NaN"),
-        ("clock origin NaN", f64_at(blob, n - 24, math.nan), "clock origin = NaN"),
-        ("clock step inf", f64_at(blob, n - 16, math.inf), "clock step = inf"),
+        ("clock origin NaN", f64_at(blob, n - 25, math.nan), "clock origin = NaN"),
+        ("clock step inf", f64_at(blob, n - 17, math.inf), "clock step = inf"),
         ("velocity NaN", f64_at(blob, st.v_offset + 8, math.nan), "velocity 1 = NaN"),
         ("displacement -inf", f64_at(blob, st.u_offset, -math.inf), "displacement 0 = -inf"),
         ("startTime NaN", f64_at(blob, start_at, math.nan), "startTime = NaN"),
