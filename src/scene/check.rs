@@ -191,6 +191,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     let mut inputs = Vec::new();
     let supports = items::supports(&c, &raw.support, &params, &mut inputs)?;
     let loads = items::loads(&c, &raw.load, &mut params, &mut inputs)?;
+    items::label_amplitude(&loads, &mut params);
     let sensors = raw
         .sensor
         .iter()

@@ -248,3 +248,28 @@ pub(super) fn sensor(c: &Checker, i: usize, s: &SensorFile) -> Result<Sensor, Sc
         description: s.description.trim().to_string(),
     })
 }
+
+/// The unit of `F` from the harmonic loads it scales: N/m when they are all distributed
+/// (per unit length), N when they are all point loads, none when they are mixed.
+pub(super) fn label_amplitude(loads: &[Load], params: &mut [Param]) {
+    let Some(f) = params.iter().position(|p| p.name == "F") else {
+        return;
+    };
+    let amplitude = Slot::Param {
+        index: f,
+        sign: 1.0,
+    };
+    let units: Vec<&str> = loads
+        .iter()
+        .filter(|l| l.time == TimeLaw::Harmonic && l.value == amplitude)
+        .map(|l| match l.kind {
+            LoadKind::Distributed => "N/m",
+            LoadKind::Point { .. } => "N",
+        })
+        .collect();
+    if let Some(&first) = units.first() {
+        if units.iter().all(|&u| u == first) {
+            params[f].unit = Some(first.to_string());
+        }
+    }
+}

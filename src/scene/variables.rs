@@ -344,7 +344,8 @@ fn lyapunov_outputs(scene: &Scene) -> Vec<Variable> {
             Some("1/s"),
             format!(
                 "Lyapunov exponent {} (in decreasing order) per second: the growth of the tangent \
-                 vectors averaged since lyapunov_start (0 unless lyapunov_count >= {})",
+                 vectors averaged after lyapunov_start + lyapunov_align (0 unless \
+                 lyapunov_count >= {})",
                 i + 1,
                 i + 1
             ),
@@ -375,7 +376,8 @@ fn lyapunov_outputs(scene: &Scene) -> Vec<Variable> {
         "lyapunov_time".to_string(),
         LYAPUNOV_TIME_VR,
         Some("s"),
-        "Time the Lyapunov exponents average over (since lyapunov_start)".to_string(),
+        "Time the Lyapunov exponents average over (since lyapunov_start + lyapunov_align)"
+            .to_string(),
         OutputId::LyapunovTime,
     ));
     vars
