@@ -184,6 +184,22 @@ fn good_scene_and_repository_scenes_parse() {
     }
 }
 
+/// `F` is a force per unit length where it scales distributed loads, a force where it scales
+/// point loads (docs/model.md, units).
+#[test]
+fn the_amplitude_takes_the_unit_of_the_loads_it_scales() {
+    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (file, unit) in [
+        ("scenes/BuckledBeam.toml", "N/m"),
+        ("scenes/PinnedArch.toml", "N"),
+        ("examples/ThreeSpan.toml", "N/m"),
+    ] {
+        let scene = Scene::load(repo.join(file)).unwrap();
+        let (_, f) = scene.param("F").unwrap();
+        assert_eq!(f.unit.as_deref(), Some(unit), "{file}");
+    }
+}
+
 /// `elements` declares the fewest and the most elements in [2, 100000] that put every support on
 /// a node, and both are accepted; the counts just outside are refused when set.
 #[test]
