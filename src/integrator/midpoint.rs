@@ -91,6 +91,8 @@ pub struct Midpoint {
     /// Held dofs whose rows of the equation of motion each step keeps, and those rows.
     held: Vec<usize>,
     held_rows: Vec<f64>,
+    /// Rows of `dynamic_part` at the held dofs: (first column, the up to 9 entries).
+    held_stencils: Vec<(usize, [f64; 9])>,
 }
 
 impl Midpoint {
@@ -110,6 +112,7 @@ impl Midpoint {
             inertia: vec![0.0; n],
             held: Vec::new(),
             held_rows: Vec::new(),
+            held_stencils: Vec::new(),
         }
     }
 
@@ -118,6 +121,7 @@ impl Midpoint {
     pub fn keep_rows(&mut self, dofs: &[usize]) {
         self.held = dofs.to_vec();
         self.held_rows = vec![0.0; dofs.len()];
+        self.held_stencils = vec![(0, [0.0; 9]); dofs.len()];
     }
 
     /// The rows of the kept dofs of the equation of motion `M (v_(n+1) - v_n)/dt + C du/dt +
@@ -168,6 +172,9 @@ impl Midpoint {
             rod.add_mass(&mut self.dynamic_part, 2.0 / (dt * dt));
             rod.add_damping(&mut self.dynamic_part, 1.0 / dt);
             self.dynamic_dt = dt;
+            for (stencil, &dof) in self.held_stencils.iter_mut().zip(&self.held) {
+                *stencil = self.dynamic_part.row_stencil(dof);
+            }
         }
         // Predictor: constant velocity.
         for (d, v) in self.du.iter_mut().zip(&state.v) {
@@ -224,7 +231,7 @@ impl Midpoint {
             self.check_iteration_limit(&stats, correction)?;
             reusable = self.reuse_factorization.then_some(correction);
         }
-        self.update_held_rows(rod, dt);
+        self.update_held_rows();
         if self.linearize && !ended_on_newton {
             self.factor_at_converged_step(rod, state)?;
             stats.factorizations += 1;
@@ -365,16 +372,12 @@ impl Midpoint {
     }
 
     /// Brings the kept rows from the last residual evaluation to the converged step: adds the
-    /// linear part `(2/dt^2 M + C/dt) c` of the last correction `c` (in `residual`).
-    fn update_held_rows(&mut self, rod: &Rod, dt: f64) {
-        let (a, b) = (2.0 / (dt * dt), 1.0 / dt);
-        for (row, &dof) in self.held_rows.iter_mut().zip(&self.held) {
-            let (node, k) = (dof / 3, dof % 3);
-            for (e, offset) in rod.elements_at(node) {
-                let c = &self.residual;
-                *row += a * rod.element_pattern_row(e, offset, k, c, false)
-                    + b * rod.element_pattern_row(e, offset, k, c, true);
-            }
+    /// linear part `(2/dt^2 M + C/dt) c` of the last correction `c` (in `residual`), from the
+    /// rows of the cached `dynamic_part`.
+    fn update_held_rows(&mut self) {
+        for (row, (first, entries)) in self.held_rows.iter_mut().zip(&self.held_stencils) {
+            let c = &self.residual[*first..];
+            *row += entries.iter().zip(c).map(|(a, x)| a * x).sum::<f64>();
         }
     }
 }

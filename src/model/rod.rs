@@ -103,28 +103,6 @@ impl Rod {
         Vector6::from_column_slice(&x[3 * e..3 * e + 6])
     }
 
-    /// Row `offset + k` (offset 0 or 3) of element `e`'s part of `M x` (or, with `damping`,
-    /// of `C x`), `x` a global vector.
-    pub fn element_pattern_row(
-        &self,
-        e: usize,
-        offset: usize,
-        k: usize,
-        x: &[f64],
-        damping: bool,
-    ) -> f64 {
-        let c = self.inertia[e].coefficients(damping)[k];
-        let (a, b) = (x[3 * e + k], x[3 * e + 3 + k]);
-        if self.lumped {
-            return 3.0 * c * if offset == 0 { a } else { b };
-        }
-        c * if offset == 0 {
-            2.0 * a + b
-        } else {
-            a + 2.0 * b
-        }
-    }
-
     /// The elements that hold node `i` (one at an end, two inside), with the offset of the
     /// node's dofs in the element's six.
     pub fn elements_at(&self, i: usize) -> impl Iterator<Item = (usize, usize)> {

@@ -132,6 +132,28 @@ impl BlockTridiagonal {
         }
     }
 
+    /// Row `dof` of `A` (before factorization) as its first column and the entries from there:
+    /// the 9 columns of the node's block row (6 at the first and last node, padded with zeros).
+    pub fn row_stencil(&self, dof: usize) -> (usize, [f64; 9]) {
+        debug_assert!(!self.factored);
+        let (i, k) = (dof / 3, dof % 3);
+        let mut entries = [0.0; 9];
+        let first = i.saturating_sub(1);
+        let blocks = [
+            (i > 0).then(|| &self.lower[i.wrapping_sub(1)]),
+            Some(&self.diag[i]),
+            (i + 1 < self.blocks()).then(|| &self.upper[i]),
+        ];
+        let mut at = 0;
+        for m in blocks.into_iter().flatten() {
+            for c in 0..3 {
+                entries[at + c] = m[(k, c)];
+            }
+            at += 3;
+        }
+        (3 * first, entries)
+    }
+
     /// Block LU factorization in place, without pivoting between blocks (the Jacobians here are
     /// symmetric and, in dynamics, mass-dominated). Fails on a pivot block that is singular to
     /// working precision.
@@ -231,6 +253,33 @@ fn block(x: &[f64], i: usize) -> Vector3<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each row stencil times `x` is that row of `A x`, at the ends and inside.
+    #[test]
+    fn row_stencils_are_the_rows_of_the_product() {
+        let blocks = 4;
+        let mut a = BlockTridiagonal::new(blocks);
+        let fill = |m: &mut Matrix3<f64>, seed: f64| {
+            for (n, x) in m.iter_mut().enumerate() {
+                *x = (seed + n as f64).sin();
+            }
+        };
+        for i in 0..blocks {
+            fill(&mut a.diag[i], i as f64);
+        }
+        for i in 0..blocks - 1 {
+            fill(&mut a.upper[i], 10.0 + i as f64);
+            fill(&mut a.lower[i], 20.0 + i as f64);
+        }
+        let x: Vec<f64> = (0..3 * blocks).map(|j| (0.3 * j as f64).cos()).collect();
+        let mut ax = vec![0.0; 3 * blocks];
+        a.mul(&x, &mut ax);
+        for (dof, want) in ax.iter().enumerate() {
+            let (first, entries) = a.row_stencil(dof);
+            let got: f64 = entries.iter().zip(&x[first..]).map(|(e, v)| e * v).sum();
+            assert!((got - want).abs() <= 1e-14, "row {dof}: {got} vs {want}");
+        }
+    }
 
     #[test]
     fn adjugate_inverse_matches_nalgebra() {
