@@ -1,7 +1,7 @@
 //! FMU states (`fmi2GetFMUstate` & co.): everything needed to put an instance back exactly where
 //! it was, and its versioned, self-checking binary form (`fmi2SerializeFMUstate`).
 //!
-//! Serialized layout, version 4 (all integers little-endian):
+//! Serialized layout, version 5 (all integers little-endian):
 //!
 //! | offset | size | field |
 //! |---:|---:|---|
