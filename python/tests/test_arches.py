@@ -115,3 +115,35 @@ def test_earlier_substeps() -> None:
 
     assert earlier_substeps(1000.0) == 640 and earlier_substeps(2000.0) == 320
     assert earlier_substeps(2 * math.pi / 2e-4) == 20  # exactly 1e-5 per twentieth: no round-up
+
+
+def test_quick_study_writes_a_run_folder_not_docs(tmp_path: Path) -> None:
+    """`georod-tools study arches --quick` (about 15 s): every figure of docs/arches.md into the
+    run folder with its run.json, nothing into docs/; the z3 cascade starts in the inverted
+    well (w_mid near -4) and the ClampedArch ring is quasi-periodic, as the page says."""
+    import json
+
+    from georod_tools.cli import main
+
+    docs = Path(__file__).resolve().parents[2] / "docs"
+    before = {p: p.stat().st_mtime_ns for p in docs.rglob("*") if p.is_file()}
+    out = tmp_path / "arches"
+    assert main(["study", "arches", "--quick", "--out", str(out)]) == 0
+    names = {p.name for p in out.iterdir()}
+    for fig in (
+        "static_pinned",
+        "static_clamped",
+        "chaos_pinned",
+        "cascades",
+        "clamped",
+        "clamped_ring",
+        "clamped_doubling",
+        "onset_elements",
+    ):
+        assert f"arches_{fig}.png" in names
+    record = json.loads((out / "run.json").read_text())
+    assert record["status"] == "complete" and set(record["fmu"]) == {"PinnedArch", "ClampedArch"}
+    log = (out / "study_log.txt").read_text()
+    assert "cascade from z3: F = 2: period-1" in log and "w_mid in [-4.1" in log
+    assert "Figure 11 analogue" in log and "quasi-periodic" in log
+    assert {p: p.stat().st_mtime_ns for p in docs.rglob("*") if p.is_file()} == before

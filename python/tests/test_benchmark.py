@@ -125,12 +125,12 @@ def test_quick_benchmark_end_to_end(tmp_path: Path) -> None:
 def test_lyapunov_methods_benchmark_end_to_end(tmp_path: Path) -> None:
     """Three values of F, 20 + 20 periods, one worker: the table has a row per method with
     positive times and the ratios; the twin's reference runs the core's trajectory exactly."""
-    from georod_tools.studies.lyapunov_benchmark import BenchSettings, run_benchmark
+    from georod_tools.studies.lyapunov_benchmark import BenchSettings, run_lyapunov_benchmark
 
     st = BenchSettings(
         str(BEAM_FMU), count=3, transient=20, periods=20, substeps=32, workers=(1,), bench_steps=500
     )
-    files = run_benchmark(st, tmp_path, progress=False, say=lambda _: None)
+    files = run_lyapunov_benchmark(st, tmp_path, progress=False, say=lambda _: None)
     assert {f.name for f in files} == {
         "lyapunov_methods.csv",
         "lyapunov_agreement.csv",

@@ -286,3 +286,11 @@ def run_case(config: CaseConfig) -> CaseResult:
         classification=cls,
         wall_time=time.perf_counter() - t_start,
     )
+
+
+def run_case_plain(config: CaseConfig) -> CaseResult:
+    """:func:`run_case` without the exponent (the trajectory's own cost); the result keeps
+    `config`."""
+    result = run_case(replace(config, lyapunov=False))
+    result.config = config
+    return result

@@ -13,9 +13,9 @@ installed, not the FMU file: the FMU travels to them as bytes, see
 to case (:meth:`georod_tools.fmu.FmuModel.instance`).
 
 A case that fails (the FMU returns fmi2Discard or fmi2Error, a Python exception, a lost worker or
-one that cannot load the FMU) becomes a :class:`~georod_tools.analysis.failure.CaseFailure` with its reason;
-:func:`sweep` always finishes and returns results and failures, :func:`run_sweep` (the study's
-entry) raises after the whole sweep when any case failed.
+one that cannot load the FMU) becomes a :class:`~georod_tools.analysis.failure.CaseFailure` with
+its reason; :func:`sweep` always finishes and returns results and failures, :func:`run_sweep`
+(the studies' entry) raises after the whole sweep when any case failed.
 """
 
 from __future__ import annotations

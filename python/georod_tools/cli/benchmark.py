@@ -99,7 +99,7 @@ def run_lyapunov(
     from georod_tools.studies.lyapunov_benchmark import (
         BenchSettings,
         default_workers,
-        run_benchmark,
+        run_lyapunov_benchmark,
     )
 
     fmu = str((args.fmu or fmu_path("BuckledBeam")).resolve())
@@ -112,5 +112,5 @@ def run_lyapunov(
     record = start_run(
         parser, args, argv, DEFAULT_OUT, "benchmark lyapunov", {"settings": st}, [Path(fmu)]
     )
-    files = run_benchmark(st, record.folder, progress=not args.no_progress)
+    files = run_lyapunov_benchmark(st, record.folder, progress=not args.no_progress)
     return finish_run(record, files, args, DOCS)

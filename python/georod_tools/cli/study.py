@@ -36,6 +36,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     s = studies.add_parser("paper", help="the paper's section 6.1: figures, tables, checks")
     s.add_argument("--quick", action="store_true", help="short runs, few bifurcation values")
     s.add_argument("--workers", type=positive_int, default=2, help="Dask workers, >= 1 (2)")
+    s.add_argument(
+        "--substeps",
+        type=positive_int,
+        help="midpoint sub-steps per forcing period, >= 1 (128; the former study's: 200)",
+    )
     s.add_argument("--fmu", type=Path, help="BuckledBeam FMU (target/fmu/BuckledBeam.fmu)")
     s.add_argument("--no-convergence", action="store_true", help="skip the checks of differences")
     s.add_argument("--no-progress", action="store_true", help="no progress bars")
@@ -101,6 +106,8 @@ def run_paper(
         parser.error(f"--parts {args.parts}: choose from {','.join(PARTS)}")
     make = StudySettings.quick if args.quick else StudySettings.full
     st = replace(make(str(Path(fmu).resolve())), convergence=not args.no_convergence)
+    if args.substeps is not None:
+        st = replace(st, substeps=args.substeps)
     record = start_run(
         parser, args, argv, DEFAULT_OUT, "study paper", {"settings": st, "parts": parts}, [fmu]
     )

@@ -22,6 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402 - the backend must be chosen first
 import numpy as np  # noqa: E402
 from matplotlib.axes import Axes  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from georod_tools.analysis.case import CaseResult  # noqa: E402
 from georod_tools.analysis.failure import CaseFailure  # noqa: E402
@@ -55,6 +56,7 @@ def poincare_axes(
     a period-1 point is a point and a period-k orbit shows its k points apart."""
     s = np.asarray(samples, dtype=float)
     ax.plot(s[:, 0], s[:, 1], ".", ms=2.5 if len(s) > 50 else 5, color="k")
+    ax.margins(0.08)  # points of a period-k orbit are not drawn on the frame
     for setter, centre, spread, swing in zip(
         (ax.set_xlim, ax.set_ylim), s.mean(axis=0), np.ptp(s, axis=0), size, strict=True
     ):
@@ -66,6 +68,7 @@ def poincare_axes(
     ax.set_ylabel(label("v_mid", fmu), fontsize=fs)
     if small:
         ax.tick_params(labelsize=7)
+        ax.xaxis.set_major_locator(MaxNLocator(4))  # readable tick labels in a narrow panel
     if title:
         ax.set_title(title, fontsize=8 if small else None, color=color)
 

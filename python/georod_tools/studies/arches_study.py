@@ -83,9 +83,6 @@ def study(out: Path, quick: bool = False, say: Callable[[str], None] = print) ->
         say(line)
         log.append(line)
 
-    def case(cfg: CaseConfig) -> CaseResult:
-        return run_case(cfg)
-
     # 1. static diagrams (Figures 6 and 10) and the natural frequencies about the equilibria.
     pinned = static_diagram("PinnedArch", max_load=30.0)
     imperfect = static_diagram("PinnedArch", max_load=30.0, imperfection=0.01)
@@ -103,7 +100,7 @@ def study(out: Path, quick: bool = False, say: Callable[[str], None] = print) ->
         files.append(write_text(table, out / f"modes_{scene}.csv"))
         tell(f"modes {scene}:\n{table}")
     # 2. PinnedArch chaotic attractor (Figure 7).
-    chaos = case(arch_case("PinnedArch", F=20.0, sample_periods=300, dense_periods=20))
+    chaos = run_case(arch_case("PinnedArch", F=20.0, sample_periods=300, dense_periods=20))
     files.append(plot_case(chaos, out / "arches_chaos_pinned.png"))
     tell(
         f"Figure 7 analogue: F = 20, Omega = 1000: {chaos.classification.label}, exponent "
@@ -118,7 +115,7 @@ def study(out: Path, quick: bool = False, say: Callable[[str], None] = print) ->
         forces_z1, forces_z3 = forces_z1[::3], forces_z3[::3]
     for start, forces, prelude in (("z1", forces_z1, None), ("z3", forces_z3, Z3_PRELUDE)):
         for f in forces:
-            r = case(arch_case("PinnedArch", F=f, prelude=prelude))
+            r = run_case(arch_case("PinnedArch", F=f, prelude=prelude))
             grids.append(r)
             titles.append(f"from {start}, F = {f:g}")
             w = r.samples[:, 0]
@@ -134,7 +131,7 @@ def study(out: Path, quick: bool = False, say: Callable[[str], None] = print) ->
         clamped_cases = clamped_cases[:1]
     rs = []
     for om, f in clamped_cases:
-        r = case(
+        r = run_case(
             arch_case(
                 "ClampedArch",
                 F=f,
@@ -151,7 +148,7 @@ def study(out: Path, quick: bool = False, say: Callable[[str], None] = print) ->
         )
     titles = [f"Omega = {om:g}, F = {f:g}" for om, f in clamped_cases]
     files.append(poincare_grid(rs, titles, out / "arches_clamped.png"))
-    ring = case(
+    ring = run_case(
         clamped_ring_case(
             transient_periods=400 if quick else 1500, sample_periods=300 if quick else 400
         )
@@ -164,7 +161,7 @@ def study(out: Path, quick: bool = False, say: Callable[[str], None] = print) ->
     )
     doubling = []
     for f in CLAMPED_DOUBLING_FORCES[:1] if quick else CLAMPED_DOUBLING_FORCES:
-        r = case(
+        r = run_case(
             clamped_ring_case(
                 F=f, Omega=CLAMPED_DOUBLING_OMEGA, transient_periods=3000, sample_periods=600
             )

@@ -95,7 +95,7 @@ def case_row(case: PaperCase, r: CaseResult) -> dict[str, object]:
     }
 
 
-def convergence_rows(checks: Sequence[Check]) -> list[dict[str, object]]:
+def check_rows(checks: Sequence[Check]) -> list[dict[str, object]]:
     rows: list[dict[str, object]] = []
     for ch in checks:
         for name, r in {"base": ch.base, **ch.variants}.items():
@@ -238,7 +238,7 @@ def _write_cases(rep: StudyReport, out: Path) -> list[Path]:
         write_text(markdown(case_rows, CASE_COLUMNS), out / "table_cases.md"),
     ]
     if rep.checks:
-        conv = convergence_rows(rep.checks)
+        conv = check_rows(rep.checks)
         files += [
             write_csv(conv, out / "convergence.csv"),
             write_text(markdown(conv, CONV_COLUMNS), out / "table_checks.md"),
