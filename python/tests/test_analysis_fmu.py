@@ -105,6 +105,8 @@ def test_bad_parameters() -> None:
         config(Omega=0.0)
     with pytest.raises(ValueError, match="dense_steps = 48 must divide substeps = 128"):
         config(dense_steps=48)
+    with pytest.raises(ValueError, match="params dt_max: set by the case itself"):
+        config(params=(("dt_max", 1e-5),))  # dt_max is T / substeps, never overridden
 
 
 def test_case_figure_and_csv(tmp_path: Path) -> None:
@@ -203,6 +205,7 @@ def test_case_and_sweep_agree(tmp_path: Path, capsys: pytest.CaptureFixture[str]
         (["case", "--set", "dt_max=1e-5"], "--set dt_max: set by georod_tools"),
         (["case", "--periods", "5"], "at least one averaged Lyapunov period"),
         (["case", "--dense-steps", "48"], "must divide --substeps 128"),
+        (["sweep", "--param", "dt_max", "--start", "1e-5", "--stop", "2e-5"], "--param dt_max"),
         (["sweep", "--start", "0.4", "--stop", "2", "--count", "0"], "allowed range 1..100000"),
         (["sweep", "--param", "Omega", "--start", "0", "--stop", "2"], "must be > 0"),
         (["case", "--fmu", "/nonexistent.fmu"], "no such file"),

@@ -41,6 +41,8 @@ MAX_DEFAULT_DENSE_STEPS = 64
 #: The sensors sampled: displacement and velocity of the midspan (every scene of the paper).
 OUTPUTS = ("w_mid", "v_mid")
 LYAPUNOV_OUTPUTS = ("lyapunov[1]", "lyapunov_time")
+#: FMU parameters a case sets from its own fields (never through `params`).
+MANAGED = ("F", "Omega", "elements", "dt_max", "lyapunov_count", "lyapunov_start", "lyapunov_align")
 
 
 def default_dense_steps(substeps: int) -> int:
@@ -114,6 +116,12 @@ class CaseConfig:
         for ok, msg in checks:
             if not ok:
                 raise ValueError(msg)
+        managed = sorted({n for n, _ in self.params} & set(MANAGED))
+        if managed:
+            raise ValueError(
+                f"params {', '.join(managed)}: set by the case itself (F, Omega, elements, "
+                "substeps, lyapunov)"
+            )
         if self.lyapunov and self.sample_periods <= self.align_periods:
             raise ValueError(
                 f"sample_periods = {self.sample_periods} leaves no period to average the "
@@ -142,8 +150,8 @@ class CaseConfig:
     def fmu_parameters(self) -> dict[str, float]:
         """Every parameter set on the FMU before initialization, by name."""
         T = self.period
-        p: dict[str, float] = {"elements": self.elements, "dt_max": self.dt_max}
-        p.update(dict(self.params))
+        p: dict[str, float] = dict(self.params)
+        p.update({"elements": self.elements, "dt_max": self.dt_max})
         p.update({"F": 0.0 if self.prelude else self.F, "Omega": self.Omega})
         if self.lyapunov:
             # Half a sub-step before the period boundary: round-off in the core's clock cannot

@@ -14,7 +14,7 @@ import argparse
 from collections.abc import Sequence
 from pathlib import Path
 
-from georod_tools.analysis.case import DEFAULT_SUBSTEPS, CaseConfig
+from georod_tools.analysis.case import DEFAULT_SUBSTEPS, MANAGED, CaseConfig
 from georod_tools.analysis.classify import ClassifySettings
 from georod_tools.cli.args import (
     add_output_options,
@@ -30,16 +30,8 @@ from georod_tools.cli.args import (
 DEFAULT_OUT = Path("out") / "case"
 #: Largest mesh accepted on the command line.
 MAX_ELEMENTS = 100_000
-#: Options that have their own flag instead of --set.
-OWN_FLAGS = (
-    "F",
-    "Omega",
-    "elements",
-    "dt_max",
-    "lyapunov_count",
-    "lyapunov_start",
-    "lyapunov_align",
-)
+#: Parameters that have their own flag (or are set by the case) instead of --set.
+OWN_FLAGS = MANAGED
 
 
 def add_case_options(p: argparse.ArgumentParser, sweep: bool) -> None:

@@ -31,7 +31,7 @@ from pathlib import Path
 from georod_tools.analysis.case import CaseConfig, CaseResult
 from georod_tools.analysis.failure import CaseFailure
 from georod_tools.cli.args import finite_float, int_range, positive_int
-from georod_tools.cli.case import add_case_options, base_config, check_case_options
+from georod_tools.cli.case import OWN_FLAGS, add_case_options, base_config, check_case_options
 from georod_tools.fmu import FmuModel
 from georod_tools.report.case_files import (
     failure_record,
@@ -139,6 +139,8 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
     check_case_options(parser, args)
     if args.param in ("elements", "substeps"):
         parser.error(f"--param {args.param}: sweep a Real parameter")
+    if args.param in OWN_FLAGS and args.param not in ("F", "Omega"):
+        parser.error(f"--param {args.param}: set by georod_tools from the time-step options")
     if args.param == "Omega" and not (args.start > 0 and args.stop > 0):
         parser.error(f"--param Omega: --start {args.start} and --stop {args.stop} must be > 0")
     base = base_config(parser, args)
