@@ -218,3 +218,26 @@ def test_cli_errors(args: list[str], message: str, capsys: pytest.CaptureFixture
         main([*args, "--fmu", str(BEAM_FMU)] if "--fmu" not in args else args)
     assert e.value.code == 2
     assert message in capsys.readouterr().err
+
+
+def test_instances_are_reused_after_reset_and_after_a_failure() -> None:
+    """One instance serves case after case (fmi2Reset between them, no new instantiation, the
+    core keeps its static initial state when the fixed parameters agree), and a case the FMU
+    refuses leaves the instance usable: the next case gives the same bits as a fresh process."""
+    from georod_tools.analysis.case import run_case
+    from georod_tools.fmu import FmuError, FmuModel
+
+    model = FmuModel.load(BEAM_FMU)
+    cfg = config(F=0.9, transient_periods=5, sample_periods=15, substeps=32)
+    first = run_case(cfg)
+    idle = list(model.idle)  # earlier tests may have left instances too
+    inst = idle[-1]  # the one this case used: given back last, lent first
+    again = run_case(cfg)
+    assert model.idle == idle and model.idle[-1] is inst  # the same instance, given back
+    assert np.array_equal(first.samples, again.samples)
+    assert first.exponent_per_period == again.exponent_per_period
+    with pytest.raises(FmuError, match="fmi2Discard"):
+        run_case(config(F=1000.0, elements=4, transient_periods=5, sample_periods=15, substeps=16))
+    assert model.idle == idle
+    after = run_case(cfg)
+    assert np.array_equal(after.samples, first.samples)

@@ -19,7 +19,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 from georod_tools import fmu_path
-from georod_tools.analysis.case import CaseConfig, CaseResult, run_case
+from georod_tools.analysis.case import CaseConfig, CaseResult
+from georod_tools.analysis.case import run_case as run_one
 from georod_tools.report.figures import plot_case, plt, save
 from georod_tools.report.tables import write_text
 from georod_tools.studies.arches import (
@@ -75,13 +76,22 @@ def clamped_ring_case(
 
 def study(out: Path, quick: bool = False, say: Callable[[str], None] = print) -> list[Path]:
     """Runs the whole study into `out`; returns the files written (figures ``arches_*.png``)."""
+    from tqdm import tqdm
+
     out.mkdir(parents=True, exist_ok=True)
     log: list[str] = []
     files: list[Path] = []
+    bar = tqdm(desc="arches: cases run", unit="case", leave=False)
 
     def tell(line: str) -> None:
+        bar.clear()
         say(line)
         log.append(line)
+
+    def run_case(cfg: CaseConfig) -> CaseResult:
+        result = run_one(cfg)
+        bar.update(1)
+        return result
 
     # 1. static diagrams (Figures 6 and 10) and the natural frequencies about the equilibria.
     pinned = static_diagram("PinnedArch", max_load=30.0)
@@ -175,12 +185,18 @@ def study(out: Path, quick: bool = False, say: Callable[[str], None] = print) ->
     files.append(plot_ring_doubling(doubling, out / "arches_clamped_doubling.png"))
     # 5. Onset of chaos against the element count (Figure 9): smallest F in the list classified
     #    chaotic, at Omega = 1000, from z1.
-    files += onset_vs_elements(out, quick, tell)
+    files += onset_vs_elements(out, quick, tell, run_case)
+    bar.close()
     files.append(write_text("\n".join(log), out / "study_log.txt"))
     return files
 
 
-def onset_vs_elements(out: Path, quick: bool, tell: Callable[[str], None]) -> list[Path]:
+def onset_vs_elements(
+    out: Path,
+    quick: bool,
+    tell: Callable[[str], None],
+    run_case: Callable[[CaseConfig], CaseResult] = run_one,
+) -> list[Path]:
     counts = [2, 3, 4, 6, 8, 10, 12, 16, 20] if not quick else [4, 10]
     forces = [10.0, 12.0, 14.0, 15.0, 16.0, 18.0, 20.0, 24.0, 28.0]
     thresholds: list[tuple[int, float]] = []

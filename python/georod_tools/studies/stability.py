@@ -18,6 +18,8 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
+from tqdm import tqdm
+
 from georod_tools.fmu import FmuError, FmuModel, lend
 from georod_tools.report.figures import save
 
@@ -98,7 +100,8 @@ def run_energy(
             out.message = f"during the kick: {e}"
             return out
         inst.set("F", 0.0)
-        for j in range(steps + 1):
+        desc = f"{case.name}, integrator {integrator}"
+        for j in tqdm(range(steps + 1), desc=desc, unit="step", leave=False, mininterval=1.0):
             t = (kick + j) * h
             if j % every == 0 or j == steps:
                 e_kin, e_strain, err, w = read()
