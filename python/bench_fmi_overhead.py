@@ -21,7 +21,7 @@ from pathlib import Path
 import fmpy
 from fmpy.fmi2 import FMU2Slave
 
-from georod_tools.argtypes import positive_float, positive_int
+from georod_tools.cli.args import positive_float, positive_int
 
 REPO = Path(__file__).resolve().parents[1]
 FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"

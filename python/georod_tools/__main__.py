@@ -1,4 +1,4 @@
-"""``python -m georod_tools``: the chaos-analysis command line (see :mod:`georod_tools.cli`)."""
+"""``python -m georod_tools``: the command line (see :mod:`georod_tools.cli`)."""
 
 import sys
 

@@ -29,7 +29,6 @@ from pathlib import Path
 
 import fmpy
 
-from georod_tools.fmu_state import PREFIX_LEN, decode_state
 from helpers import ERROR, LAST_SUCCESSFUL_TIME, OK, OUTPUTS, LogCapture
 
 P = POINTER
@@ -54,6 +53,9 @@ PROTOTYPES: dict[str, tuple[object, list[object]]] = {
 }
 H = 1e-5  # one internal sub-step at the default dt_max
 NOT_LIVE = "not a live FMU state of this instance"
+#: Every byte of this many at the start of a serialized state is flipped, whatever the sample:
+#: the versioned header, the GUID and the scene name lie there (their layout is not read here).
+HEAD_BYTES = 256
 
 
 class Fmu:
@@ -184,8 +186,3 @@ def good_state(host: Host) -> tuple[int, bytes]:
     status, blob = host.serialize(s)
     assert status == OK
     return s, blob
-
-
-def header_end(blob: bytes) -> int:
-    st = decode_state(blob)
-    return PREFIX_LEN + 8 + len(st.guid) + 8 + len(st.scene) + 8

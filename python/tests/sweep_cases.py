@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from georod_tools.runner import CaseConfig, CaseResult, run_case
+from georod_tools.analysis.case import CaseConfig, CaseResult, run_case
 
 #: Values of F for which :func:`flaky_case` raises or kills its worker.
 RAISES_AT = 0.9
@@ -21,8 +21,7 @@ def tiny_config(fmu: Path | str) -> CaseConfig:
     return CaseConfig(
         fmu=str(fmu),
         elements=4,
-        dt_max=2e-5,
-        n_per_period=10,
+        substeps=16,
         transient_periods=5,
         sample_periods=25,
     )
@@ -35,10 +34,8 @@ def tiny_cli_options(fmu: Path | str) -> list[str]:
         str(fmu),
         "--elements",
         "4",
-        "--dt-max",
-        "2e-5",
-        "--per-period",
-        "10",
+        "--substeps",
+        "16",
         "--transient",
         "5",
         "--periods",

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from georod_tools.classify import (
+from georod_tools.analysis.classify import (
     CHAOTIC,
     PERIODIC,
     QUASI_PERIODIC,
@@ -18,7 +18,7 @@ from georod_tools.classify import (
     detect_period,
     period_mismatch,
 )
-from georod_tools.lyapunov import LyapunovSettings, map_exponent
+from map_twin import map_exponent
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0  # an irrational rotation number, badly approximable
 
@@ -73,28 +73,26 @@ def test_period_needs_two_repeats() -> None:
 def test_circle_map_rotation_is_quasi_periodic() -> None:
     """Circle map with K = 0 and an irrational rotation: exponent exactly 0, samples on a ring."""
     f = circle_map(GOLDEN)
-    lyap = map_exponent(
-        f, 0.1, LyapunovSettings(renormalizations=500), difference=circle_difference
-    )
-    assert abs(lyap.per_step) < 1e-6
+    lyap = map_exponent(f, 0.1, 500, difference=circle_difference)
+    assert abs(lyap.per_period) < 1e-6
     theta = (0.1 + GOLDEN * np.arange(300)) % 1.0
     x = ring(theta)
     assert 0.9 < correlation_dimension(x) < 1.15
-    c = classify(x, lyap.per_step)
+    c = classify(x, lyap.per_period)
     assert c.kind == QUASI_PERIODIC, c.note
     assert c.period is None and np.nanmin(c.mismatch) > 1e-3
 
 
 def test_logistic_map_exponent_is_ln2() -> None:
-    """r = 4: lambda = ln 2. 20000 renormalizations give a standard error ~0.0065; the tolerance
-    0.03 is ~5 standard errors."""
-    lyap = map_exponent(logistic, 0.3, LyapunovSettings(d0=1e-9, renormalizations=20000))
-    assert abs(lyap.per_step - math.log(2.0)) < 0.03
+    """r = 4: lambda = ln 2. 20000 iterations give a standard error ~0.01; the tolerance 0.04 is
+    ~4 standard errors."""
+    lyap = map_exponent(logistic, 0.3, 20000)
+    assert abs(lyap.per_period - math.log(2.0)) < 0.04
     assert lyap.stderr < 0.01
     xs = [0.3]
     for _ in range(499):
         xs.append(float(logistic(np.array(xs[-1]))))
-    c = classify(np.array(xs), lyap.per_step)
+    c = classify(np.array(xs), lyap.per_period)
     assert c.kind == CHAOTIC
 
 
@@ -104,8 +102,8 @@ def test_henon_exponent() -> None:
     def henon(x: np.ndarray) -> np.ndarray:
         return np.array([1.0 - 1.4 * x[0] ** 2 + x[1], 0.3 * x[0]])
 
-    lyap = map_exponent(henon, [0.1, 0.1], LyapunovSettings(d0=1e-9, renormalizations=10000))
-    assert abs(lyap.per_step - 0.419) < 0.02
+    lyap = map_exponent(henon, [0.1, 0.1], 10000)
+    assert abs(lyap.per_period - 0.419) < 0.02
 
 
 def test_area_filling_samples_are_unresolved() -> None:
@@ -131,10 +129,14 @@ def test_settings_are_checked(kwargs: dict[str, float]) -> None:
         ClassifySettings(**kwargs)  # type: ignore[arg-type]
 
 
-@pytest.mark.parametrize("kwargs", [{"d0": 0.0}, {"every": 0}, {"renormalizations": 0}])
-def test_lyapunov_settings_are_checked(kwargs: dict[str, float]) -> None:
+@pytest.mark.parametrize(
+    "kwargs", [{"d0": 0.0}, {"d0": 1e-2}, {"max_separation": math.inf}, {"align_periods": 0}]
+)
+def test_twin_settings_are_checked(kwargs: dict[str, float]) -> None:
+    from georod_tools.analysis.twin import TwinSettings
+
     with pytest.raises(ValueError):
-        LyapunovSettings(**kwargs)  # type: ignore[arg-type]
+        TwinSettings(**kwargs)  # type: ignore[arg-type]
 
 
 def test_bad_samples_are_refused() -> None:

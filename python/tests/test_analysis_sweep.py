@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from georod_tools.sweep import sweep_values
+from georod_tools.analysis.sweep import sweep_values
 
 REPO = Path(__file__).resolve().parents[2]
 BEAM_FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
@@ -23,17 +23,13 @@ def test_sweep_values() -> None:
 
 @pytest.mark.usefixtures("fmu_paths")  # builds the FMUs when missing or stale
 def test_sweep_independent_of_workers(tmp_path: Path) -> None:
-    from georod_tools.plots import plot_sweep, write_sweep_csv
-    from georod_tools.runner import CaseConfig
-    from georod_tools.sweep import run_sweep
+    from georod_tools.analysis.case import CaseConfig
+    from georod_tools.analysis.sweep import run_sweep
+    from georod_tools.report.case_files import write_sweep_csv
+    from georod_tools.report.figures import plot_sweep
 
     base = CaseConfig(
-        fmu=str(BEAM_FMU),
-        elements=6,
-        dt_max=2e-5,
-        n_per_period=10,
-        transient_periods=10,
-        sample_periods=25,
+        fmu=str(BEAM_FMU), elements=6, substeps=16, transient_periods=10, sample_periods=25
     )
     values = [2.0, 0.4, 0.9]  # unsorted on purpose
     one = run_sweep(base, "F", values, workers=1, progress=False)
@@ -58,16 +54,11 @@ def test_sweep_on_given_scheduler() -> None:
 
     from dask.distributed import LocalCluster
 
-    from georod_tools.runner import CaseConfig, run_case
-    from georod_tools.sweep import run_sweep
+    from georod_tools.analysis.case import CaseConfig, run_case
+    from georod_tools.analysis.sweep import run_sweep
 
     base = CaseConfig(
-        fmu=str(BEAM_FMU),
-        elements=4,
-        dt_max=2e-5,
-        n_per_period=10,
-        transient_periods=5,
-        sample_periods=15,
+        fmu=str(BEAM_FMU), elements=4, substeps=16, transient_periods=5, sample_periods=15
     )
     with LocalCluster(
         n_workers=1, threads_per_worker=1, dashboard_address=None, silence_logs=logging.WARNING

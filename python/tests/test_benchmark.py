@@ -1,6 +1,6 @@
-"""Smoke tests of the work-precision benchmark (georod_tools.benchmark): the pure helpers exactly,
-the numpy twin of model.md's element against the FMU's static state, Exudyn's model against the
-FMU's (when exudyn is installed), and the whole benchmark end to end with tiny sizes (< 30 s)."""
+"""Smoke tests of the benchmarks (georod_tools.studies.benchmark, .lyapunov_benchmark): the pure
+helpers exactly, the core's model quantities (the FMU's static state, ``georod modes``) against
+each other and against Exudyn's model, and both benchmarks end to end with tiny sizes."""
 
 from __future__ import annotations
 
@@ -11,17 +11,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from georod_tools.benchmark import (
+from georod_tools.studies.bench_beam import (
     BeamScene,
-    ExudynBeam,
     equal_error_ratio,
     errors,
-    exudyn_status,
     fmu_run,
-    generalized_frequencies,
-    georod_frequencies,
-    run_benchmark,
+    model_quantities,
 )
+from georod_tools.studies.exudyn_beam import ExudynBeam, exudyn_status, generalized_frequencies
 
 REPO = Path(__file__).resolve().parents[2]
 BEAM_FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
@@ -72,24 +69,27 @@ def test_fmu_run_is_second_order_and_repeatable() -> None:
 
 
 @needs_fmu
-def test_numpy_twin_matches_fmu_static_state() -> None:
-    freq, w_mid, residual = georod_frequencies(BeamScene(), 10, 2, fmu=BEAM_FMU)
-    assert residual < 1e-10  # the FMU's static state is an equilibrium of model.md's element
-    assert w_mid == pytest.approx(REGRESSION_W_STATIC, abs=1e-6)  # regression guard
-    assert 2000 < freq[0] < 3000 and 9000 < freq[1] < 12000
+def test_model_quantities_come_from_the_core() -> None:
+    """The FMU's static state and ``georod modes`` about the same equilibrium agree (two paths
+    through the core: the FMU's load stepping and the continuation of the static path; measured
+    equal to 1e-12), and the frequencies are those of the buckled beam."""
+    q = model_quantities(BeamScene(), 10, 2, fmu=BEAM_FMU)
+    assert q.w_static_fmu == pytest.approx(q.w_static_core, abs=1e-9)
+    assert q.w_static_fmu == pytest.approx(REGRESSION_W_STATIC, abs=1e-6)  # regression guard
+    assert 2000 < q.omegas[0] < 3000 and 9000 < q.omegas[1] < 12000
 
 
 @needs_fmu
-def test_exudyn_model_agrees_with_fmu() -> None:
+def test_exudyn_model_agrees_with_the_core() -> None:
     installed, why = exudyn_status()
     assert installed, f"exudyn is pinned in python/requirements.txt but cannot be imported: {why}"
     sc = BeamScene()
-    fg, wg, _ = georod_frequencies(sc, 20, 2, fmu=BEAM_FMU)
+    q = model_quantities(sc, 20, 2, fmu=BEAM_FMU)
     ex = ExudynBeam(sc, 20)
     try:
         fe = ex.frequencies(2)
-        assert ex.w_static == pytest.approx(wg, rel=5e-3)
-        assert fe == pytest.approx(fg, rel=1e-2)
+        assert ex.w_static == pytest.approx(q.w_static_fmu, rel=5e-3)
+        assert fe == pytest.approx(q.omegas, rel=1e-2)
         r = ex.run(16, 1, 1, record=True)
         assert len(r.w) == 17 and r.w[0] == pytest.approx(ex.w_static)
         assert r.seconds > 0
@@ -99,9 +99,10 @@ def test_exudyn_model_agrees_with_fmu() -> None:
 
 @needs_fmu
 def test_quick_benchmark_end_to_end(tmp_path: Path) -> None:
+    from georod_tools.studies.benchmark_report import run_benchmark
+
     rep = run_benchmark(
         tmp_path / "out",
-        tmp_path / "fig",
         quick=True,
         use_exudyn=exudyn_status()[0],
         fmu=BEAM_FMU,
@@ -110,7 +111,7 @@ def test_quick_benchmark_end_to_end(tmp_path: Path) -> None:
     )
     names = {p.name for p in rep.files}
     assert {"work_precision.csv", "space.csv", "scaling.csv", "benchmark.md"} <= names
-    assert "benchmark_quick_work_precision_final.png" in names
+    assert {"benchmark_work_precision_final.png", "benchmark_scaling.png"} <= names
     with (tmp_path / "out" / "work_precision.csv").open() as fh:
         rows = list(csv.DictReader(fh))
     fmu = [r for r in rows if r["method"] == "fmu"]
@@ -118,3 +119,31 @@ def test_quick_benchmark_end_to_end(tmp_path: Path) -> None:
     errs = [float(r["err_final"]) for r in fmu]
     assert errs[0] > errs[1] > errs[2] > 0
     assert all(float(r["seconds"]) > 0 for r in rows)
+
+
+@needs_fmu
+def test_lyapunov_methods_benchmark_end_to_end(tmp_path: Path) -> None:
+    """Three values of F, 20 + 20 periods, one worker: the table has a row per method with
+    positive times and the ratios; the twin's reference runs the core's trajectory exactly."""
+    from georod_tools.studies.lyapunov_benchmark import BenchSettings, run_lyapunov_benchmark
+
+    st = BenchSettings(
+        str(BEAM_FMU), count=3, transient=20, periods=20, substeps=32, workers=(1,), bench_steps=500
+    )
+    files = run_lyapunov_benchmark(st, tmp_path, progress=False, say=lambda _: None)
+    assert {f.name for f in files} == {
+        "lyapunov_methods.csv",
+        "lyapunov_agreement.csv",
+        "lyapunov_methods.md",
+        "lyapunov_methods.png",
+    }
+    with (tmp_path / "lyapunov_methods.csv").open() as fh:
+        rows = {r["method"]: r for r in csv.DictReader(fh)}
+    assert set(rows) == {"core", "twin", "plain"}
+    assert float(rows["core"]["wall_vs_core"]) == 1.0
+    assert all(float(r["wall_s"]) > 0 and float(r["us_per_substep"]) > 0 for r in rows.values())
+    assert int(rows["twin"]["substeps"]) == 3 * (20 + 2 * 20) * 32
+    with (tmp_path / "lyapunov_agreement.csv").open() as fh:
+        agree = list(csv.DictReader(fh))
+    assert len(agree) == 3 and all(a["same_samples"] == "True" for a in agree)
+    assert "Classification equal for" in (tmp_path / "lyapunov_methods.md").read_text()

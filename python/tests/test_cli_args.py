@@ -1,6 +1,7 @@
-"""Every Python command answers --help, and refuses a zero, negative or non-finite step, count,
-time, period count, worker count or frequency with exit status 2 and a message that names the
-option and the allowed range (no traceback)."""
+"""The one command line (``georod-tools`` / ``python -m georod_tools``): every subcommand answers
+--help, and a zero, negative or non-finite step, count, time, period count, worker count or
+frequency is refused with exit status 2 and a message that names the option and the allowed
+range (no traceback)."""
 
 from __future__ import annotations
 
@@ -18,27 +19,22 @@ from georod_tools.cli import build_parser
 PACKAGE = Path(georod_tools.__file__).parent
 
 
-def _subcommands() -> list[str]:
-    parser = build_parser()
-    (action,) = [a for a in parser._actions if a.__class__.__name__ == "_SubParsersAction"]
-    return sorted(action.choices)  # type: ignore[arg-type]
+def _subcommands(parser: object = None, prefix: tuple[str, ...] = ()) -> list[tuple[str, ...]]:
+    """Every (sub)subcommand path of the parser, e.g. ("study", "paper")."""
+    parser = parser or build_parser()
+    out: list[tuple[str, ...]] = []
+    for action in parser._actions:  # type: ignore[attr-defined]
+        if action.__class__.__name__ == "_SubParsersAction":
+            for name, sub in sorted(action.choices.items()):
+                out.append((*prefix, name))
+                out += _subcommands(sub, (*prefix, name))
+    return out
 
 
 #: (module run with ``python -m``, arguments before --help)
 COMMANDS: list[tuple[str, list[str]]] = [
     ("georod_tools", []),
-    *[("georod_tools", [sub]) for sub in _subcommands()],
-    ("georod_tools.cli", []),
-    ("georod_tools.arches", []),
-    ("georod_tools.arches", ["static"]),
-    ("georod_tools.arches", ["study"]),
-    ("georod_tools.stability", []),
-    ("georod_tools.stability", ["fmu"]),
-    ("georod_tools.stability", ["plot"]),
-    ("georod_tools.benchmark", []),
-    ("georod_tools.demo", []),
-    ("georod_tools.study", []),
-    ("georod_tools.animate", []),
+    *[("georod_tools", list(path)) for path in _subcommands()],
 ]
 
 
@@ -58,17 +54,42 @@ def _run_module(module: str, args: list[str]) -> int:
     return 0
 
 
-def test_every_module_with_a_main_runs_as_a_command() -> None:
-    """A module that defines main() also calls it under ``python -m`` (else --help would print
-    nothing and exit 0), and is in COMMANDS."""
-    listed = {m for m, _ in COMMANDS}
-    for path in sorted(PACKAGE.glob("*.py")):
+def test_one_command_line() -> None:
+    """Only the command line defines main() (no module is a command of its own), and the
+    subcommands the issue asks for are all there."""
+    mains = []
+    for path in sorted(PACKAGE.rglob("*.py")):
         tree = ast.parse(path.read_text())
-        has_main = any(isinstance(n, ast.FunctionDef) and n.name == "main" for n in tree.body)
-        runs = '__name__ == "__main__"' in path.read_text() or path.name == "__main__.py"
-        if has_main:
-            assert runs, f"{path.name} defines main() but has no __main__ block"
-            assert f"georod_tools.{path.stem}" in listed, f"{path.stem} missing from COMMANDS"
+        if any(isinstance(n, ast.FunctionDef) and n.name == "main" for n in tree.body):
+            mains.append(str(path.relative_to(PACKAGE)))
+    assert mains == ["cli/__init__.py"]
+    paths = set(_subcommands())
+    for want in [
+        ("case",),
+        ("sweep",),
+        ("study", "paper"),
+        ("study", "arches"),
+        ("study", "stability"),
+        ("benchmark", "precision"),
+        ("benchmark", "lyapunov"),
+        ("animate",),
+        ("demo",),
+    ]:
+        assert want in paths
+
+
+def test_console_scripts() -> None:
+    """``georod-tools`` and its former name ``georod-chaos`` are installed and answer --help."""
+    bindir = Path(sys.executable).parent
+    for name in ("georod-tools", "georod-chaos"):
+        r = subprocess.run(
+            [str(bindir / name), "case", "--help"],
+            capture_output=True,
+            text=True,
+            timeout=120,
+            check=False,
+        )
+        assert r.returncode == 0 and "--substeps" in r.stdout, r.stderr
 
 
 @pytest.mark.parametrize(("module", "args"), COMMANDS, ids=[" ".join([m, *a]) for m, a in COMMANDS])
@@ -94,11 +115,9 @@ def test_help_through_python_m() -> None:
 POSITIVE_FLOAT = "must be > 0 and finite"
 BAD_VALUES: list[tuple[str, list[str], str, str]] = [
     # module, arguments, the option named, the allowed range stated
-    ("georod_tools", ["case", "--dt-max", "0"], "--dt-max", POSITIVE_FLOAT),
-    ("georod_tools", ["case", "--dt-max=-1e-5"], "--dt-max", POSITIVE_FLOAT),
-    ("georod_tools", ["case", "--dt-max", "-0.001"], "--dt-max", POSITIVE_FLOAT),
-    ("georod_tools", ["case", "--dt-max", "nan"], "--dt-max", POSITIVE_FLOAT),
-    ("georod_tools", ["sweep", "--dt-max", "inf"], "--dt-max", POSITIVE_FLOAT),
+    ("georod_tools", ["case", "--substeps", "0"], "--substeps", "must be an integer >= 1"),
+    ("georod_tools", ["sweep", "--substeps", "-2"], "--substeps", "must be an integer >= 1"),
+    ("georod_tools", ["case", "--substeps", "1.5"], "--substeps", "expected an integer"),
     ("georod_tools", ["case", "--Omega", "0"], "--Omega", POSITIVE_FLOAT + " (rad/s)"),
     ("georod_tools", ["sweep", "--Omega=-inf"], "--Omega", POSITIVE_FLOAT),
     ("georod_tools", ["sweep", "--Omega", "-3500"], "--Omega", POSITIVE_FLOAT),
@@ -108,10 +127,9 @@ BAD_VALUES: list[tuple[str, list[str], str, str]] = [
     ("georod_tools", ["case", "--transient", "-1"], "--transient", "must be an integer >= 0"),
     ("georod_tools", ["case", "--periods", "0"], "--periods", "must be an integer >= 1"),
     ("georod_tools", ["sweep", "--periods", "-3"], "--periods", "must be an integer >= 1"),
-    ("georod_tools", ["case", "--per-period", "0"], "--per-period", "must be an integer >= 1"),
+    ("georod_tools", ["case", "--dense-steps", "0"], "--dense-steps", "must be an integer >= 1"),
     ("georod_tools", ["case", "--dense-periods", "-1"], "--dense-periods", ">= 0"),
-    ("georod_tools", ["case", "--renorm-every", "0"], "--renorm-every", ">= 1"),
-    ("georod_tools", ["case", "--d0", "0"], "--d0", POSITIVE_FLOAT),
+    ("georod_tools", ["case", "--align", "-1"], "--align", "must be an integer >= 0"),
     ("georod_tools", ["case", "--period-tol", "1"], "--period-tol", "allowed range (0, 1)"),
     ("georod_tools", ["case", "--chaos-threshold", "-0.1"], "--chaos-threshold", POSITIVE_FLOAT),
     ("georod_tools", ["case", "--set", "E=inf"], "--set", "must be a finite number"),
@@ -121,15 +139,17 @@ BAD_VALUES: list[tuple[str, list[str], str, str]] = [
     ("georod_tools", ["sweep", "--workers", "0"], "--workers", "must be an integer >= 1"),
     ("georod_tools", ["sweep", "--start", "nan"], "--start", "must be a finite number"),
     ("georod_tools", ["sweep", "--stop", "inf"], "--stop", "must be a finite number"),
-    ("georod_tools", ["study", "--workers", "-1"], "--workers", "must be an integer >= 1"),
-    ("georod_tools", ["study", "--repeats", "0"], "--repeats", "must be an integer >= 1"),
-    ("georod_tools.study", ["--workers", "0"], "--workers", "must be an integer >= 1"),
-    ("georod_tools.arches", ["static", "--max-load", "0"], "--max-load", POSITIVE_FLOAT),
-    ("georod_tools.arches", ["static", "--max-load", "nan"], "--max-load", POSITIVE_FLOAT),
-    ("georod_tools.stability", ["fmu", "--steps", "0"], "--steps", "must be an integer >= 1"),
-    ("georod_tools.stability", ["fmu", "--every", "-2"], "--every", "must be an integer >= 1"),
-    ("georod_tools.demo", ["--periods", "1"], "--periods", "must be an integer >= 2"),
-    ("georod_tools.demo", ["--transient", "-5"], "--transient", "must be an integer >= 0"),
+    ("georod_tools", ["study", "paper", "--workers", "-1"], "--workers", "must be an integer >= 1"),
+    ("georod_tools", ["study", "arch-path", "--max-load", "0"], "--max-load", POSITIVE_FLOAT),
+    ("georod_tools", ["study", "arch-path", "--max-load", "nan"], "--max-load", POSITIVE_FLOAT),
+    ("georod_tools", ["study", "stability", "--steps", "0"], "--steps", "must be an integer >= 1"),
+    ("georod_tools", ["study", "stability", "--every", "-2"], "--every", "must be an integer >= 1"),
+    ("georod_tools", ["benchmark", "lyapunov", "--count", "0"], "--count", "an integer >= 1"),
+    ("georod_tools", ["benchmark", "lyapunov", "--workers", "0,2"], "--workers", ">= 1"),
+    ("georod_tools", ["animate", "x.fmu", "--stop", "-1"], "--stop", POSITIVE_FLOAT),
+    ("georod_tools", ["animate", "x.fmu", "--frames", "0"], "--frames", "an integer >= 1"),
+    ("georod_tools", ["demo", "--periods", "1"], "--periods", "must be an integer >= 2"),
+    ("georod_tools", ["demo", "--transient", "-5"], "--transient", "must be an integer >= 0"),
 ]
 
 

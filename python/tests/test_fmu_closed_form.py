@@ -1,22 +1,21 @@
-"""The damping and load magnitudes through the BuckledBeam FMU, against closed forms.
+"""The damping and load magnitudes through the FMUs, against closed forms.
 
-With ``pre_shortening = 0`` the BuckledBeam FMU is a straight rod pinned at both ends (u1 = u2 = 0
-at both ends, rotations free) whose initial state is the straight, unloaded one (u = 0): two
-closed forms apply there.
-
-- Damping: an axial motion of a straight rod never leaves the axis (no shear strain, no
-  curvature), and on it the damping matrix is ``c = d / (rho A)`` times the mass matrix (both are
-  the consistent ``integral N^T N ds``), so every axial mode obeys ``q'' + c q' + omega^2 q = 0``
-  and decays like ``exp(-d t / (2 rho A))``. The first fixed-fixed mode of linear elements with
-  consistent mass is ``sin(pi i / n)`` at node i with ``omega_h^2 = 6 E / (rho l^2) (1 - cos(pi /
-  n)) / (2 + cos(pi / n))``, so the state must follow the implicit midpoint map of that scalar
-  equation. The mode is put in through the serialized FMU state (velocities patched).
-- Load: a small uniform load ``F cos(Omega t)`` at ``Omega`` far below the first bending
-  frequency: after the start transient has died out, ``w_mid(T) = -w_static Re H`` with the
-  Timoshenko static deflection ``5 F L^4 / (384 EI) + F L^2 / (8 G A)`` (shear factor 1, model.md)
-  and the first mode's dynamic factor ``H = 1 / (1 - r^2 + i c r / omega_1)``, ``r = Omega /
-  omega_1``, ``omega_1`` the Timoshenko frequency. The mesh error (second order, exactly ``C /
-  n^2``: tests/closed_form_static_beam.rs) is removed by Richardson extrapolation from 40 and 80
+- Damping: python/tests/scenes/AxialBar.toml is a bar of two elements whose only free dof is the
+  axial displacement q of its midpoint. With the rotations and transverse displacements held at 0
+  the element is exactly linear in q, and the damping matrix is ``c = d / (rho A)`` times the
+  consistent mass, so ``q'' + c q' + omega^2 q = F cos(Omega t) / m`` with ``omega^2 = 3 E / (rho
+  l^2)``, ``l = L / 2``. Once the load is switched off, the outputs (q, q') must follow the
+  implicit midpoint map of that scalar equation, and the area ``q_k q'_{k+1} - q_{k+1} q'_k`` of
+  successive states shrinks by its determinant: the decay rate ``d / (2 rho A)`` of the continuous
+  equation up to the midpoint rule's own factor ``1 / (1 + (omega dt / 2)^2)``.
+- Load: with ``pre_shortening = 0`` the BuckledBeam FMU is a straight rod pinned at both ends
+  (u1 = u2 = 0 at both ends, rotations free) starting straight and unloaded. A small uniform
+  load ``F cos(Omega t)`` at ``Omega`` far below the first bending frequency: after the start
+  transient has died out, ``w_mid(T) = -w_static Re H`` with the Timoshenko static deflection
+  ``5 F L^4 / (384 EI) + F L^2 / (8 G A)`` (shear factor 1, model.md) and the first mode's
+  dynamic factor ``H = 1 / (1 - r^2 + i c r / omega_1)``, ``r = Omega / omega_1``, ``omega_1``
+  the Timoshenko frequency. The mesh error (second order, exactly ``C / n^2``:
+  tests/closed_form_static_beam.rs) is removed by Richardson extrapolation from 40 and 80
   elements.
 
 The same checks on a free rod, closer to the core, are in tests/closed_form_damping_load.rs.
@@ -25,33 +24,18 @@ The same checks on a free rod, closer to the core, are in tests/closed_form_damp
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
-from fmpy.fmi2 import FMU2Slave
+import pytest
 
-from georod_tools.fmu_state import decode_state, encode_state
 from helpers import FmuInfo, get_reals, instantiate, release
+from scene_fmus import package_scene
 
-E, NU, RHO, D, L = 1.2e4, 0.2, 1.0e-6, 5.0e-4, 10.0  # defaults of the FMU; b = h = 1
+E, NU, RHO, D, L = 1.2e4, 0.2, 1.0e-6, 5.0e-4, 10.0  # defaults of the FMUs; b = h = 1
 EI, GA = E / 12.0, E / (2.0 * (1.0 + NU))
 C = D / RHO  # d / (rho A), 1/s
 STRAIGHT = {"pre_shortening": 0.0}
-
-
-def serialized(slave: FMU2Slave) -> bytes:
-    state = slave.getFMUstate()
-    try:
-        return bytes(slave.serializeFMUstate(state))
-    finally:
-        slave.freeFMUstate(state)
-
-
-def put(slave: FMU2Slave, blob: bytes) -> None:
-    state = slave.deSerializeFMUstate(blob)
-    try:
-        slave.setFMUstate(state)
-    finally:
-        slave.freeFMUstate(state)
 
 
 def midpoint_map(w2: float, c: float, dt: float) -> np.ndarray:
@@ -61,52 +45,51 @@ def midpoint_map(w2: float, c: float, dt: float) -> np.ndarray:
     return np.linalg.solve(i - 0.5 * dt * a, i + 0.5 * dt * a)
 
 
-def test_axial_mode_decays_at_d_over_2_rho_a(beam: FmuInfo) -> None:
-    n, dt, h, steps, v_amp = 10, 1e-6, 1e-5, 1000, 10.0
-    theta, length = math.pi / n, L / n
-    w2 = 6.0 * E / (RHO * length * length) * (1.0 - math.cos(theta)) / (2.0 + math.cos(theta))
-    shape = np.sin(theta * np.arange(n + 1))
-    shape[[0, -1]] = 0.0  # the supports hold u1
-    slave = instantiate(beam, {**STRAIGHT, "F": 0.0, "elements": n, "dt_max": dt})
+@pytest.fixture(scope="module")
+def axial_bar(tmp_path_factory: pytest.TempPathFactory) -> FmuInfo:
+    return package_scene("AxialBar", Path(tmp_path_factory.mktemp("axial_bar")))
+
+
+def test_axial_mode_decays_at_d_over_2_rho_a(axial_bar: FmuInfo) -> None:
+    """Driven at resonance for 50 steps, then free for 1000 steps of h = 1e-5 (10 sub-steps of
+    1e-6 each): the outputs follow the step map to round-off and the area decays at the midpoint
+    rule's rate."""
+    dt, h, steps = 1e-6, 1e-5, 1000
+    w2 = 3.0 * E / (RHO * (L / 2) ** 2)
+    info = axial_bar
+    slave = instantiate(info, {"F": 1.0, "Omega": math.sqrt(w2), "dt_max": dt})
+    names = ["q_mid", "qdot_mid"]
     try:
-        blob = serialized(slave)
-        st = decode_state(blob)
-        assert not np.any(st.displacements), "the straight rod starts at u = 0"
-        v = np.zeros(st.dofs)
-        v[0::3] = v_amp * shape
-        put(slave, encode_state(blob, st.displacements, v))
-        step_map = np.linalg.matrix_power(midpoint_map(w2, C, dt), round(h / dt))
-        y = np.array([0.0, v_amp])
-        states = [(st.displacements, v)]
-        worst = 0.0
-        for k in range(steps):
+        for k in range(50):
             slave.doStep(k * h, h)
+        slave.setReal([info.vr["F"]], [0.0])
+        y = np.array(get_reals(slave, info, names))
+        amplitude = math.hypot(y[0] * math.sqrt(w2), y[1])
+        assert amplitude > 1e-3, "the load should have set the mode going"
+        step_map = np.linalg.matrix_power(midpoint_map(w2, C, dt), round(h / dt))
+        states, worst = [y], 0.0
+        for k in range(50, 50 + steps):
+            slave.doStep(k * h, h)
+            got = np.array(get_reals(slave, info, names))
             y = step_map @ y
-            got = decode_state(serialized(slave))
-            states = [states[-1], (got.displacements, got.velocities)]
-            du = np.abs(got.displacements[0::3] - y[0] * shape).max() * math.sqrt(w2)
-            dv = np.abs(got.velocities[0::3] - y[1] * shape).max()
-            worst = max(worst, (du + dv) / v_amp)
-            assert not np.any(got.displacements[1::3]) and not np.any(got.displacements[2::3])
-            if k == 0:
-                (u0, v0), (u1, v1) = states
-                area0 = u0 @ v1 - u1 @ v0
-        (ua, va), (ub, vb) = states
+            err = np.abs(got - y) * np.array([math.sqrt(w2), 1.0])
+            worst = max(worst, float(err.max()) / amplitude)
+            states.append(got)
     finally:
         release(slave)
-    # u . v' - u' . v of two successive states of one mode: the phase-plane area, multiplied by
-    # the determinant of the step map each step (continuous time: exp(-c t)).
-    rate = -math.log((ua @ vb - ub @ va) / area0) / (2.0 * (steps - 1) * h)
+    s = np.array(states)
+    area = s[:-1, 0] * s[1:, 1] - s[1:, 0] * s[:-1, 1]
+    rate = -math.log(area[-1] / area[0]) / (2.0 * (steps - 1) * h)
     gap = rate / (0.5 * C) - 1.0
     print(
         f"axial mode: max error vs step map {worst:.2e}; decay {rate:.6f} 1/s vs d/(2 rho A) "
         f"= {0.5 * C}: {gap:.3e} (midpoint: -(omega dt/2)^2 = {-w2 * dt * dt / 4:.3e})"
     )
-    # The state follows the exact step map to round-off accumulated over 1e4 sub-steps
-    # (measured 2.5e-11 in the core test).
+    # The outputs follow the exact step map to round-off accumulated over 1e4 sub-steps
+    # (measured 2e-12 of the amplitude); bound 1e-10.
     assert worst < 1e-10
-    # The midpoint rule damps a mode at (c/2) / (1 + (omega dt/2)^2): a gap of -2.98e-4 here
-    # (measured the same); 1e-3 bounds it, 200x below a 20 % error in d.
+    # The midpoint rule damps a mode at (c/2) / (1 + (omega dt/2)^2): a gap of -3.6e-4 here;
+    # 1e-3 bounds it, 200x below a 20 % error in d.
     assert abs(gap) < 1e-3
 
 

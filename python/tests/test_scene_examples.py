@@ -183,7 +183,7 @@ def test_altered_scene_file_is_refused(examples: dict[str, FmuInfo], tmp_path: P
 
 def test_animate_writes_a_gif(examples: dict[str, FmuInfo], tmp_path: Path) -> None:
     out = tmp_path / "cantilever.gif"
-    cmd = [sys.executable, "-m", "georod_tools.animate", str(examples["Cantilever"].path)]
+    cmd = [sys.executable, "-m", "georod_tools", "animate", str(examples["Cantilever"].path)]
     cmd += ["--start-values", "f_tip=0.005", "--stop", "0.2", "--frames", "8", "-o", str(out)]
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
@@ -196,6 +196,13 @@ def test_animate_writes_a_gif(examples: dict[str, FmuInfo], tmp_path: Path) -> N
     assert (tmp_path / "cantilever.gif.json").is_file()
     again = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
     assert again.returncode == 2 and "--overwrite" in again.stderr
+    # without -o: a new run folder under out/animate with its run.json (here in tmp_path)
+    cmd = cmd[: cmd.index("-o")]
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    (folder,) = (tmp_path / "out" / "animate").iterdir()
+    assert folder.name.startswith("Cantilever_") and (folder / "run.json").is_file()
+    assert (folder / "Cantilever.gif").is_file()
 
 
 def test_support_follows_input_derivatives(examples: dict[str, FmuInfo]) -> None:

@@ -1,7 +1,7 @@
 """Stability study (issue 7) through the FMUs with fmpy: very large steps and very large
 excitation give either OK with finite outputs or fmi2Discard with the state intact (never NaN,
 never a crash); parameters at the edges of their ranges run or are refused naming the variable;
-a short smoke of georod_tools.stability (energy of integrator 1 vs 2).
+a short smoke of georod_tools.studies.stability (energy of integrator 1 vs 2).
 
 The long runs and the plots: scripts/study_stability (docs/stability.md)."""
 
@@ -12,7 +12,7 @@ import math
 import pytest
 from fmpy.fmi1 import FMICallException
 
-from georod_tools import stability
+from georod_tools.studies import stability
 from helpers import (
     DISCARD,
     ERROR,

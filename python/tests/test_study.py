@@ -1,5 +1,6 @@
-"""Smoke tests of the section 6.1 study (georod_tools.study) and of the demo (georod_tools.demo):
-the pure helpers exactly, the study and the demo end to end with tiny runs (about 15 s)."""
+"""Smoke tests of the section 6.1 study (georod_tools.studies.paper, .paper_report) and of the
+demo (georod_tools.studies.demo): the pure helpers exactly, the study and the demo end to end with
+tiny runs, and the rule that a run writes into docs/ only with --update-docs."""
 
 from __future__ import annotations
 
@@ -10,18 +11,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from georod_tools.classify import classify
-from georod_tools.demo import summarize
-from georod_tools.runner import CaseConfig, CaseResult
-from georod_tools.study import (
-    PAPER_CASES,
-    PaperCase,
-    StudySettings,
-    agreement,
-    lines,
-    markdown,
-    wells,
-)
+from georod_tools.analysis.case import CaseConfig, CaseResult
+from georod_tools.analysis.classify import classify
+from georod_tools.report.tables import markdown
+from georod_tools.studies.demo import summarize
+from georod_tools.studies.paper import StudySettings, agreement, lines, wells
+from georod_tools.studies.paper_cases import PAPER_CASES, PaperCase
 
 REPO = Path(__file__).resolve().parents[2]
 BEAM_FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
@@ -53,7 +48,7 @@ def test_paper_cases_cover_figures_2_to_5() -> None:
 def test_lines_groups_cases_into_sweeps() -> None:
     st = StudySettings(fmu="x.fmu")
     cfgs = [st.config(0.7, om) for om in (3400.0, 3500.0)] + [st.config(f, 3500.0) for f in (0.4,)]
-    cfgs.append(replace(st.config(0.7, 3400.0), dt_max=5e-6))
+    cfgs.append(replace(st.config(0.7, 3400.0), substeps=256))
     groups = lines(cfgs)
     got = sorted((p, tuple(v)) for _, p, v in groups)
     assert got == [("F", (0.4,)), ("F", (0.7,)), ("Omega", (3400.0, 3500.0))]
@@ -98,17 +93,23 @@ def test_demo_summary() -> None:
         summarize(res[:0])
 
 
+def _docs_snapshot() -> dict[str, float]:
+    docs = REPO / "docs"
+    return {str(p): p.stat().st_mtime_ns for p in docs.rglob("*") if p.is_file()}
+
+
 @needs_fmu
 def test_study_quick_smoke(tmp_path: Path) -> None:
     """Two cases (one agrees, one -- very likely at these short runs -- does not, so the checks
-    run too), a 2-value bifurcation diagram, elements 2 and 6."""
-    from georod_tools.study import run_study
+    run too), a 2-value bifurcation diagram, elements 2 and 6; nothing in docs/ changes."""
+    from georod_tools.studies.paper import run_study
+    from georod_tools.studies.paper_report import write_outputs
 
+    before = _docs_snapshot()
     st = StudySettings(
         fmu=str(BEAM_FMU),
         elements=6,
-        dt_max=2e-5,
-        n_per_period=10,
+        substeps=16,
         transient=10,
         periods=25,
         dense_periods=5,
@@ -118,11 +119,18 @@ def test_study_quick_smoke(tmp_path: Path) -> None:
         element_counts=(2, 6),
         cases=(PAPER_CASES[0], PAPER_CASES[2]),
     )
-    rep = run_study(st, tmp_path, workers=2, progress=False)
+    rep = run_study(st, workers=2, progress=False)
+    write_outputs(st, rep, tmp_path)
     assert [c.name for c, _ in rep.cases] == ["fig2a", "fig2c"]
     assert abs(rep.statics[0]) < 1e-6 < abs(rep.statics[1])  # 2 elements: no buckling
-    for name in ("overview_fig2.png", "bifurcation_F.png", "bifurcation_Omega.png",
-                 "elements.png", "cases/fig2a.png", "cases/fig2c.png"):  # fmt: skip
+    for name in (
+        "overview_fig2.png",
+        "bifurcation_F.png",
+        "bifurcation_Omega.png",
+        "elements.png",
+        "cases/fig2a.png",
+        "cases/fig2c.png",
+    ):
         size = (tmp_path / name).stat().st_size
         assert 1000 < size < 200_000, name
     with (tmp_path / "classifications.csv").open() as f:
@@ -134,6 +142,40 @@ def test_study_quick_smoke(tmp_path: Path) -> None:
         conv = (tmp_path / "convergence.csv").read_text().splitlines()
         assert len(conv) == 1 + 6 * differing
     assert "## Number of elements" in (tmp_path / "study.md").read_text()
+    assert _docs_snapshot() == before
+
+
+@needs_fmu
+def test_study_commands_write_runs_not_docs(tmp_path: Path) -> None:
+    """``study arches --quick`` and ``benchmark precision --quick`` (the two that wrote into
+    docs/figures before) leave docs/ untouched and write a run folder with run.json; a quick run
+    refuses --update-docs."""
+    import json
+
+    from georod_tools.cli import main
+
+    before = _docs_snapshot()
+    out = tmp_path / "bench"
+    argv = [
+        "benchmark",
+        "precision",
+        "--quick",
+        "--no-exudyn",
+        "--parts",
+        "time",
+        "--out",
+        str(out),
+    ]
+    assert main(argv) == 0
+    record = json.loads((out / "run.json").read_text())
+    assert record["status"] == "complete" and record["published"] == []
+    assert "benchmark_work_precision_final.png" in record["outputs"]
+    assert record["fmu"]["BuckledBeam"]["guid"]
+    assert _docs_snapshot() == before
+    with pytest.raises(SystemExit) as e:
+        main(["study", "arches", "--quick", "--update-docs", "--out", str(tmp_path / "a")])
+    assert e.value.code == 2
+    assert _docs_snapshot() == before
 
 
 @needs_fmu
@@ -141,17 +183,21 @@ def test_study_command_line_refuses_bad_workers(capsys: pytest.CaptureFixture[st
     from georod_tools.cli import main
 
     with pytest.raises(SystemExit) as e:
-        main(["study", "--workers", "0"])
+        main(["study", "paper", "--workers", "0"])
     assert e.value.code == 2
     assert "--workers" in capsys.readouterr().err
 
 
 @needs_fmu
 def test_demo_fast_smoke(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    from georod_tools.demo import main
+    from georod_tools.cli import main
 
-    assert main(["--out", str(tmp_path), "--transient", "5", "--periods", "15"]) == 0
-    out = capsys.readouterr().out
-    assert "static w_mid = 0.3" in out and "largest Lyapunov exponent" in out
+    out = tmp_path / "demo"
+    assert main(["demo", "--out", str(out), "--transient", "5", "--periods", "15"]) == 0
+    text = capsys.readouterr().out
+    assert "static w_mid = 0.3" in text and "largest Lyapunov exponent" in text
     for name in ("demo_buckled_beam.png", "demo_poincare_F1.5.png", "demo_poincare_F0.4.png"):
-        assert (tmp_path / name).stat().st_size > 1000
+        assert (out / name).stat().st_size > 1000
+    summary = (out / "summary.txt").read_text()
+    assert "static w_mid = 0.3" in summary and "F = 1.5" in summary
+    assert (out / "run.json").is_file()

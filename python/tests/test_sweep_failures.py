@@ -15,10 +15,10 @@ import fmpy
 import numpy as np
 import pytest
 
-from georod_tools.failure import FAIL_EXCEPTION, FAIL_FMU, FAIL_WORKER, CaseFailure
+from georod_tools.analysis.failure import FAIL_EXCEPTION, FAIL_FMU, FAIL_WORKER, CaseFailure
 from sweep_cases import EXITS_AT, RAISES_AT, flaky_case, tiny_cli_options, tiny_config
 
-DISCARD_F = 1000.0  # the FMU returns fmi2Discard (BuckledBeam, 4 elements, T/10 steps)
+DISCARD_F = 1000.0  # the FMU returns fmi2Discard (BuckledBeam, 4 elements, T/16 steps)
 
 
 @pytest.fixture
@@ -30,9 +30,9 @@ def test_sweep_records_fmu_exception_and_lost_worker(beam_fmu: Path) -> None:
     import dask
     import distributed  # noqa: F401 - registers the distributed config
 
-    from georod_tools.plots import sweep_figure
-    from georod_tools.runner import run_case
-    from georod_tools.sweep import sweep
+    from georod_tools.analysis.case import run_case
+    from georod_tools.analysis.sweep import sweep
+    from georod_tools.report.figures import sweep_figure
 
     base = tiny_config(beam_fmu)
     values = [0.4, RAISES_AT, DISCARD_F, 1.5, EXITS_AT]

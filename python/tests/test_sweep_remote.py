@@ -19,8 +19,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from georod_tools.failure import FAIL_WORKER, CaseFailure
-from georod_tools.remote import FmuPayload, FmuUnavailableError
+from georod_tools.analysis.failure import FAIL_WORKER, CaseFailure
+from georod_tools.fmu.worker import FmuPayload, FmuUnavailableError
 from sweep_cases import tiny_cli_options, tiny_config
 
 
@@ -54,17 +54,16 @@ def _on_workers(address: str, fn: object, *args: object) -> dict[str, object]:
 
 
 def _worker_state() -> dict[str, object]:
-    from georod_tools import remote
-    from georod_tools.runner import FmuModel
+    from georod_tools.fmu import FmuModel, worker
 
-    return {"cwd": os.getcwd(), "loads": remote.LOAD_COUNT, "models": len(FmuModel._cache)}
+    return {"cwd": os.getcwd(), "loads": worker.LOAD_COUNT, "models": len(FmuModel._cache)}
 
 
 def test_remote_workers_get_the_fmu_as_bytes(
     cluster: tuple[object, Path], fmu_paths: dict[str, Path], tmp_path: Path
 ) -> None:
-    from georod_tools.runner import run_case
-    from georod_tools.sweep import sweep
+    from georod_tools.analysis.case import run_case
+    from georod_tools.analysis.sweep import sweep
 
     c, workdir = cluster
     address = c.scheduler_address  # type: ignore[attr-defined]
@@ -118,8 +117,9 @@ def test_cli_sweep_on_a_scheduler(
 def test_worker_that_cannot_load_names_itself_and_why(cluster: tuple[object, Path]) -> None:
     from dask.distributed import Client
 
-    from georod_tools.remote import install, run_on_worker
-    from georod_tools.runner import run_case
+    from georod_tools.analysis.case import run_case
+    from georod_tools.analysis.sweep import run_on_worker
+    from georod_tools.fmu.worker import install
 
     c, _ = cluster
     address = c.scheduler_address  # type: ignore[attr-defined]

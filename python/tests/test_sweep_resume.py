@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from georod_tools.records import ResultLog
+from georod_tools.report.records import ResultLog
 
 COUNT = 8
 KILL_AFTER = 3  # finished cases
@@ -38,10 +38,8 @@ def _argv(fmu: Path, out: Path, workers: int) -> list[str]:
         str(COUNT),
         "--elements",
         "6",
-        "--per-period",
-        "10",
-        "--dt-max",
-        "2e-5",
+        "--substeps",
+        "16",
         "--transient",
         "300",
         "--periods",

@@ -1,19 +1,21 @@
 """Parameter sweeps (bifurcation diagrams) distributed with Dask.
 
-Each value of the swept parameter is one :func:`georod_tools.runner.run_case`: a fresh FMU
-instance from the static state at ``t = 0``, deterministic (fixed seed of the Lyapunov
-perturbation), so the results do not depend on which worker ran which case or how many workers
-there were. Results come back sorted by the parameter value.
+Each value of the swept parameter is one :func:`georod_tools.analysis.case.run_case` (or another
+`case_fn`, e.g. the twin cross-check): the FMU's initial state at ``t = 0``, deterministic (the
+core's tangent vector starts from a seeded direction), so the results do not depend on which
+worker ran which case or how many workers there were. Results come back sorted by the value.
 
 Runs on a local cluster of `workers` single-threaded worker processes by default (one FMU case
-per process at a time: the FMU is single-threaded and the processes keep the cases apart), or on
-any running scheduler when its address is given (its workers need this package installed, not
-the FMU file: the FMU travels to them as bytes, see :mod:`georod_tools.remote`).
+per process at a time: an FMU instance is single-threaded and the processes keep the cases
+apart), or on any running scheduler when its address is given (its workers need this package
+installed, not the FMU file: the FMU travels to them as bytes, see
+:mod:`georod_tools.fmu.worker`). A worker loads the FMU once and reuses its instances from case
+to case (:meth:`georod_tools.fmu.FmuModel.instance`).
 
 A case that fails (the FMU returns fmi2Discard or fmi2Error, a Python exception, a lost worker or
-one that cannot load the FMU) becomes a :class:`~georod_tools.failure.CaseFailure` with its reason;
-:func:`sweep` always finishes and returns results and failures, :func:`run_sweep` (the study's
-entry) raises after the whole sweep when any case failed.
+one that cannot load the FMU) becomes a :class:`~georod_tools.analysis.failure.CaseFailure` with
+its reason; :func:`sweep` always finishes and returns results and failures, :func:`run_sweep`
+(the studies' entry) raises after the whole sweep when any case failed.
 """
 
 from __future__ import annotations
@@ -22,19 +24,31 @@ import logging
 import sys
 from collections.abc import Callable, Sequence
 from contextlib import ExitStack
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
 
-from georod_tools.failure import FAIL_WORKER, CaseFailure
-from georod_tools.remote import FmuPayload, install, run_on_worker
-from georod_tools.runner import CaseConfig, CaseResult, run_case
+from georod_tools.analysis.case import CaseConfig, CaseResult, run_case
+from georod_tools.analysis.failure import (
+    FAIL_EXCEPTION,
+    FAIL_FMU,
+    FAIL_WORKER,
+    CaseFailure,
+)
+from georod_tools.fmu import FmuError
+from georod_tools.fmu.worker import (
+    FmuPayload,
+    FmuUnavailableError,
+    install,
+    worker_address,
+    worker_fmu_path,
+)
 
 __all__ = [
     "CaseFailure",
     "SweepOutcome",
-    "case_value",
+    "run_on_worker",
     "run_sweep",
     "sweep",
     "sweep_configs",
@@ -62,24 +76,37 @@ def sweep_configs(base: CaseConfig, param: str, values: Sequence[float]) -> list
     return [base.with_value(param, v) for v in values]
 
 
-def case_value(cfg: CaseConfig, param: str) -> float:
-    """The value of `param` in `cfg`."""
-    if param in ("F", "Omega", "dt_max", "elements"):
-        return float(getattr(cfg, param))
-    return float(dict(cfg.params)[param])
+def run_on_worker(
+    cfg: CaseConfig, value: float, sha256: str, name: str, case_fn: CaseFn
+) -> CaseResult | CaseFailure:
+    """One case on a worker with the worker's copy of the FMU; failures come back as
+    :class:`CaseFailure` (the FMU's status and log, or the exception) instead of raising."""
+    worker = worker_address()
+    try:
+        local = replace(cfg, fmu=worker_fmu_path(sha256, name))
+    except FmuUnavailableError as e:
+        return CaseFailure(value, FAIL_WORKER, str(e), worker)
+    try:
+        result = case_fn(local)
+    except FmuError as e:
+        return CaseFailure(value, FAIL_FMU, str(e), worker)
+    except Exception as e:  # noqa: BLE001 - recorded with its type, the sweep goes on
+        return CaseFailure(value, FAIL_EXCEPTION, f"{type(e).__name__}: {e}", worker)
+    result.config = cfg
+    return result
 
 
 @dataclass
 class SweepOutcome:
     """Results sorted by value, failures sorted by value, and each worker's state (address ->
-    :func:`georod_tools.remote.worker_fmu_status`) when the sweep started."""
+    :func:`georod_tools.fmu.worker.worker_fmu_status`) when the sweep started."""
 
     results: list[CaseResult] = field(default_factory=list)
     failures: list[CaseFailure] = field(default_factory=list)
     workers: dict[str, dict[str, Any]] = field(default_factory=dict)
 
 
-def _local_cluster(workers: int) -> Any:
+def local_cluster(workers: int) -> Any:
     """`workers` single-threaded processes, each holding one case at a time (worker saturation
     1: a worker that dies takes only its running case with it)."""
     import dask
@@ -134,7 +161,7 @@ def sweep(
         if scheduler:
             client = stack.enter_context(Client(scheduler))
         else:
-            cluster = stack.enter_context(_local_cluster(workers))
+            cluster = stack.enter_context(local_cluster(workers))
             client = stack.enter_context(Client(cluster))
         outcome.workers = install(client, payload)
         good = [a for a, s in outcome.workers.items() if s["fmu_loaded"]]
@@ -147,7 +174,7 @@ def sweep(
         restrict: dict[str, Any] = {}
         if len(good) < len(outcome.workers):
             restrict = {"workers": good, "allow_other_workers": True}
-        vals = [case_value(c, param) for c in configs]
+        vals = [c.value(param) for c in configs]
         futures = client.map(
             run_on_worker,
             configs,
@@ -182,7 +209,7 @@ def sweep(
                 on_done(got)
             if bar is not None:
                 bar.update(1)
-    outcome.results.sort(key=lambda r: case_value(r.config, param))
+    outcome.results.sort(key=lambda r: r.config.value(param))
     outcome.failures.sort(key=lambda f: f.value)
     return outcome
 
@@ -195,6 +222,7 @@ def run_sweep(
     scheduler: str | None = None,
     progress: bool = True,
     on_result: Callable[[CaseResult], None] | None = None,
+    case_fn: CaseFn = run_case,
 ) -> list[CaseResult]:
     """:func:`sweep` for callers that need every case: the results sorted by value, or, after
     the whole sweep ran, RuntimeError listing each failed value and its reason."""
@@ -204,7 +232,14 @@ def run_sweep(
             on_result(got)
 
     out = sweep(
-        base, param, values, workers=workers, scheduler=scheduler, progress=progress, on_done=done
+        base,
+        param,
+        values,
+        workers=workers,
+        scheduler=scheduler,
+        progress=progress,
+        on_done=done,
+        case_fn=case_fn,
     )
     if out.failures:
         lines = "; ".join(f"{param} = {f.value:g}: {f.reason}" for f in out.failures)

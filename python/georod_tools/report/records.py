@@ -146,8 +146,9 @@ def jsonable(x: Any) -> Any:
 
 
 def options(args: Any) -> dict[str, Any]:
-    """The parsed options of an argparse Namespace (private ``_`` entries left out)."""
-    return {k: v for k, v in vars(args).items() if not k.startswith("_")}
+    """The parsed options of an argparse Namespace (private ``_`` entries and the function that
+    runs the command left out)."""
+    return {k: v for k, v in vars(args).items() if not k.startswith("_") and not callable(v)}
 
 
 def normalized(x: Any) -> Any:
@@ -183,6 +184,8 @@ class RunRecord:
     def create(
         cls, folder: Path, command: str, settings: Mapping[str, Any], fmu: Mapping[str, Any]
     ) -> RunRecord:
+        """A new record (not yet saved). `fmu`: :func:`fmu_info` of the FMU, or such infos by
+        name when a run uses several FMUs."""
         data = {
             "format": FORMAT,
             "command": command,
@@ -294,3 +297,47 @@ class ResultLog:
             f.write(line)
             f.flush()
             os.fsync(f.fileno())
+
+
+def fmu_infos(paths: Iterable[str | Path]) -> dict[str, Any]:
+    """:func:`fmu_info` of each FMU by file stem (for runs that use several)."""
+    from georod_tools.fmu import FmuModel
+
+    out = {}
+    for p in paths:
+        m = FmuModel.load(p)
+        out[Path(p).stem] = fmu_info(p, m.guid, m.identifier)
+    return out
+
+
+def new_run(
+    parent: Path,
+    name: str,
+    command: str,
+    settings: Mapping[str, Any],
+    fmus: Mapping[str, Any],
+    argv: Iterable[str],
+    args: Any,
+    out: Path | None = None,
+    overwrite: bool = False,
+) -> RunRecord:
+    """The output folder of a new run (`out`, or a fresh ``parent/<name>_<timestamp>``), checked
+    by :func:`prepare_output`, with its run.json started. Raises OutputRefusedError."""
+    folder = out if out is not None else fresh_folder(parent, name)
+    prepare_output(folder, overwrite=overwrite)
+    record = RunRecord.create(folder, command, settings, fmus)
+    record.start_session(argv, options(args))
+    return record
+
+
+def publish(files: Iterable[Path], docs_dir: Path, root: Path | None = None) -> list[Path]:
+    """Copies `files` (figures and tables of a finished run) into `docs_dir` (``--update-docs``),
+    at their paths relative to `root` (the run folder; default: flat). The only way a run writes
+    into the repository's docs."""
+    copied = []
+    for f in files:
+        target = docs_dir / (f.relative_to(root) if root is not None else f.name)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(f, target)
+        copied.append(target)
+    return copied

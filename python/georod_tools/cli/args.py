@@ -1,11 +1,12 @@
-"""argparse `type=` functions that refuse values outside their allowed range.
+"""Shared pieces of the command line: argparse `type=` functions that refuse values outside
+their allowed range, ``NAME=VALUE`` pairs, and the output-folder options every run has.
 
 argparse prefixes the message with the option (``argument --count: allowed range 1..100000, got
 '0'``) and exits with status 2, without a traceback. Every float type also refuses NaN and
 infinities, which ``float()`` accepts.
 
     p.add_argument("--count", type=int_range(1, 100_000))
-    p.add_argument("--dt-max", type=positive_float)
+    p.add_argument("--Omega", type=positive_float)
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from __future__ import annotations
 import argparse
 import math
 from collections.abc import Callable
+from pathlib import Path
 
 
 def _number(text: str, kind: type, wanted: str) -> float:
@@ -81,3 +83,40 @@ finite_float = float_range()
 positive_int = int_range(1)
 #: integers >= 0 (transients, discarded intervals).
 nonnegative_int = int_range(0)
+
+
+def name_value(text: str) -> tuple[str, float]:
+    """``NAME=VALUE`` with a finite number (``--set``, ``--start-values``)."""
+    name, sep, value = text.partition("=")
+    if not sep or not name.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    try:
+        x = float(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{name}: {value!r} is not a number") from None
+    if not math.isfinite(x):
+        raise argparse.ArgumentTypeError(f"{name}={value}: must be a finite number")
+    return name.strip(), x
+
+
+def add_output_options(p: argparse.ArgumentParser, default: str, docs: str | None = None) -> None:
+    """``--out`` (default: a new timestamped folder `default`), ``--overwrite`` and, for a run
+    whose figures the repository's docs show, ``--update-docs`` (copies them into `docs`)."""
+    p.add_argument(
+        "--out",
+        type=Path,
+        help=f"output folder (default: a new {default}_<timestamp>); an existing non-empty folder "
+        "is refused unless --overwrite",
+    )
+    p.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="empty --out first (only a folder written by georod_tools, with a run.json)",
+    )
+    if docs is not None:
+        p.add_argument(
+            "--update-docs",
+            action="store_true",
+            help=f"also copy the figures (and tables) into {docs}; without it nothing in docs/ "
+            "is written",
+        )

@@ -1,9 +1,14 @@
-"""The ``sweep`` command: a bifurcation diagram written case by case, resumable.
+"""The ``sweep`` command: a bifurcation diagram written case by case, resumable, on Dask.
 
-Output folder (``--out``, default ``out/chaos/sweep_<param>_<timestamp>``):
+    georod-tools sweep --param F --start 0.4 --stop 2 --count 100 --workers 2
+
+The cases take the ``case`` command's options and defaults (:mod:`georod_tools.cli.case`), so a
+sweep's case at F and ``georod-tools case --F F`` give the same numbers.
+
+Output folder (``--out``, default ``out/sweep/sweep_<param>_<timestamp>``):
 
 - ``run.json``: the settings, the FMU (path, GUID, sha256), versions, times, one entry per
-  invocation (:mod:`georod_tools.records`);
+  invocation (:mod:`georod_tools.report.records`);
 - ``results.jsonl``: one line per finished case, appended as it finishes: the value and either
   the stroboscopic samples, exponent and class, or the failure's kind and reason;
 - at the end, from ``results.jsonl`` alone: ``<stem>.csv`` (one row per value, failures with
@@ -22,124 +27,33 @@ import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
 
-import numpy as np
-
-from georod_tools.classify import Classification
-from georod_tools.failure import FAIL_WORKER, CaseFailure
-from georod_tools.lyapunov import LyapunovResult
-from georod_tools.records import (
+from georod_tools.analysis.case import CaseConfig, CaseResult
+from georod_tools.analysis.failure import CaseFailure
+from georod_tools.cli.args import finite_float, int_range, positive_int
+from georod_tools.cli.case import OWN_FLAGS, add_case_options, base_config, check_case_options
+from georod_tools.fmu import FmuModel
+from georod_tools.report.case_files import (
+    failure_record,
+    from_record,
+    latest,
+    result_record,
+    settled,
+)
+from georod_tools.report.records import (
     OutputRefusedError,
     ResultLog,
     RunRecord,
     fmu_info,
     fresh_folder,
     jsonable,
-    now,
     options,
     prepare_output,
 )
-from georod_tools.runner import CaseConfig, CaseResult, FmuModel
 
-DEFAULT_PARENT = Path("out") / "chaos"
-
-
-# --------------------------------------------------------------------------- case records
-
-
-def result_record(value: float, r: CaseResult) -> dict[str, Any]:
-    """One line of results.jsonl for a finished case (every number exact)."""
-    c, ly = r.classification, r.lyapunov
-    return {
-        "value": value,
-        "status": "ok",
-        "finished": now(),
-        "wall_time_s": r.wall_time,
-        "class": c.label,
-        "classification": {
-            "kind": c.kind,
-            "period": c.period,
-            "exponent": c.exponent,
-            "dimension": c.dimension,
-            "mismatch": c.mismatch,
-            "note": c.note,
-        },
-        "lyapunov": None
-        if ly is None
-        else {
-            "per_step": ly.per_step,
-            "stderr": ly.stderr,
-            "log_growth": ly.log_growth,
-            "running": ly.running,
-            "every": ly.every,
-            "period": ly.period,
-        },
-        "size": r.size,
-        "sample_times": r.sample_times,
-        "samples": r.samples,
-    }
-
-
-def failure_record(f: CaseFailure) -> dict[str, Any]:
-    return {
-        "value": f.value,
-        "status": "failed",
-        "finished": now(),
-        "kind": f.kind,
-        "reason": f.reason,
-        "worker": f.worker,
-    }
-
-
-def from_record(rec: dict[str, Any], cfg: CaseConfig) -> CaseResult | CaseFailure:
-    """The result or failure of a results.jsonl line; `cfg` is the case's configuration."""
-    if rec["status"] != "ok":
-        return CaseFailure(float(rec["value"]), rec["kind"], rec["reason"], rec.get("worker"))
-    c, ly = rec["classification"], rec["lyapunov"]
-    lyap = None
-    if ly is not None:
-        lyap = LyapunovResult(
-            per_step=ly["per_step"],
-            stderr=ly["stderr"],
-            log_growth=np.asarray(ly["log_growth"], dtype=float),
-            running=np.asarray(ly["running"], dtype=float),
-            every=ly["every"],
-            period=ly["period"],
-        )
-    return CaseResult(
-        config=cfg,
-        samples=np.asarray(rec["samples"], dtype=float).reshape(-1, 2),
-        sample_times=np.asarray(rec["sample_times"], dtype=float),
-        size=np.asarray(rec["size"], dtype=float),
-        dense=None,
-        lyapunov=lyap,
-        classification=Classification(
-            kind=c["kind"],
-            period=c["period"],
-            exponent=c["exponent"],
-            dimension=c["dimension"],
-            mismatch=np.asarray(c["mismatch"], dtype=float),
-            note=c["note"],
-        ),
-        wall_time=rec["wall_time_s"],
-    )
-
-
-def latest(records: Sequence[dict[str, Any]], values: Sequence[float]) -> dict[float, dict]:
-    """The last record of each of `values` (a resumed worker failure is appended again)."""
-    wanted = set(values)
-    out: dict[float, dict[str, Any]] = {}
-    for rec in records:
-        v = float(rec["value"])
-        if v in wanted:
-            out[v] = rec
-    return out
-
-
-def settled(rec: dict[str, Any]) -> bool:
-    """Whether a record is final (a result, or a deterministic failure)."""
-    return rec["status"] == "ok" or rec.get("kind") != FAIL_WORKER
+DEFAULT_PARENT = Path("out") / "sweep"
+#: Largest sweep accepted on the command line.
+MAX_COUNT = 100_000
 
 
 # --------------------------------------------------------------------------- the command
@@ -169,19 +83,70 @@ def _stem(base: CaseConfig, args: argparse.Namespace) -> str:
     )
 
 
-def run_sweep_command(
-    parser: argparse.ArgumentParser,
-    args: argparse.Namespace,
-    base: CaseConfig,
-    argv: Sequence[str],
-) -> int:
-    """Runs (or resumes) the sweep of the command line; returns the exit status."""
-    from georod_tools.plots import plot_sweep, write_sweep_csv
-    from georod_tools.sweep import case_value, sweep, sweep_values
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser(
+        "sweep",
+        help="bifurcation diagram over F, Omega or any FMU Real parameter (Dask, resumable)",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument("--param", default="F", help="parameter swept: F, Omega or any FMU Real (F)")
+    p.add_argument("--start", type=finite_float, required=True, help="first value, finite")
+    p.add_argument("--stop", type=finite_float, required=True, help="last value, finite")
+    p.add_argument(
+        "--count",
+        type=int_range(1, MAX_COUNT),
+        default=50,
+        help=f"number of values, 1..{MAX_COUNT} (50)",
+    )
+    p.add_argument(
+        "--workers", type=positive_int, default=2, help="local worker processes, >= 1 (2)"
+    )
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDR",
+        help="address of a running Dask scheduler, e.g. tcp://host:8786 (no local cluster); "
+        "its workers need georod_tools, not the FMU file: the FMU is sent to them",
+    )
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_case_options(p, sweep=True)
+    g = p.add_argument_group("output")
+    g.add_argument(
+        "--out",
+        type=Path,
+        help=f"output folder (default: a new {DEFAULT_PARENT}/sweep_<param>_<timestamp>); an "
+        "existing non-empty folder is refused unless --resume or --overwrite",
+    )
+    g.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue the sweep recorded in --out (same settings): finished cases are kept",
+    )
+    g.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="empty --out first (only a folder written by georod_tools, with a run.json)",
+    )
+    p.set_defaults(run=run, _parser=p)
 
+
+def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequence[str]) -> int:
+    """Runs (or resumes) the sweep of the command line; returns the exit status."""
+    from georod_tools.analysis.sweep import sweep, sweep_values
+    from georod_tools.report.case_files import write_sweep_csv
+    from georod_tools.report.figures import plot_sweep
+
+    check_case_options(parser, args)
+    if args.param in ("elements", "substeps"):
+        parser.error(f"--param {args.param}: sweep a Real parameter")
+    if args.param in OWN_FLAGS and args.param not in ("F", "Omega"):
+        parser.error(f"--param {args.param}: set by georod_tools from the time-step options")
+    if args.param == "Omega" and not (args.start > 0 and args.stop > 0):
+        parser.error(f"--param Omega: --start {args.start} and --stop {args.stop} must be > 0")
+    base = base_config(parser, args)
     values = sweep_values(args.start, args.stop, args.count)
     model = FmuModel.load(base.fmu)
-    fmu = fmu_info(base.fmu, model.md.guid, model.identifier)
+    fmu = fmu_info(base.fmu, model.guid, model.identifier)
     settings = sweep_settings(args, base, values)
     settings["fmu_sha256"] = fmu["sha256"]
     if args.out is None and args.resume:
@@ -212,7 +177,7 @@ def run_sweep_command(
         if isinstance(got, CaseFailure):
             log.append(failure_record(got))
         else:
-            log.append(result_record(case_value(got.config, args.param), got))
+            log.append(result_record(got.config.value(args.param), got))
 
     t0 = time.perf_counter()
     session["scheduler"] = args.scheduler or f"local cluster of {args.workers} processes"

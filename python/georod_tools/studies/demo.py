@@ -1,31 +1,30 @@
-"""The Python half of ``scripts/demo``: the BuckledBeam FMU seen from a host.
-
-    python -m georod_tools.demo [--out DIR] [--transient N] [--periods N]
+"""The Python half of ``scripts/demo``: the BuckledBeam FMU seen from a host
+(``georod-tools demo``).
 
 1. ``fmpy.simulate_fmu`` on the default BuckledBeam FMU with its default experiment: writes
-   ``DIR/demo_buckled_beam.png`` (w_mid over time) and prints the static w_mid and the range of
+   ``demo_buckled_beam.png`` (w_mid over time) and prints the static w_mid and the range of
    motion.
 2. Poincaré sections of a chaotic case (F = 1.5) and a periodic one (F = 0.4) at Omega = 3500
    (paper, Figure 2e and 2a), short but honest runs (150 transient + 150 sampled periods by
-   default): ``DIR/demo_poincare_F<F>.png`` (section, phase portrait, time plot), with the
-   classification and the largest Lyapunov exponent printed.
+   default): ``demo_poincare_F<F>.png`` (section, phase portrait, time plot), with the
+   classification and the largest Lyapunov exponent (the core's) printed.
+3. ``summary.txt``: what was printed.
 
-Takes about 10 s on one core.
+Takes a few seconds on one core.
 """
 
 from __future__ import annotations
 
-import argparse
-import sys
 import time
-from collections.abc import Sequence
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from georod_tools import fmu_path
-from georod_tools.argtypes import int_range, nonnegative_int
+from georod_tools.analysis.case import CaseConfig, CaseResult, run_case
+from georod_tools.report.figures import plot_case, plt
+from georod_tools.report.labels import label
 
 #: The two sections of the demo: (F, Omega, what the paper shows there).
 SECTION_CASES: tuple[tuple[float, float, str], ...] = (
@@ -77,75 +76,64 @@ def simulate_default(fmu: Path) -> np.ndarray:
     return simulate_fmu(str(fmu), output=["w_mid", "v_mid", "E_kin", "E_strain"])
 
 
-def plot_time_series(result: np.ndarray, summary: Summary, path: Path) -> Path:
-    from georod_tools.plots import plt
-
+def plot_time_series(result: np.ndarray, summary: Summary, path: Path, fmu: Path) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     fig, ax = plt.subplots(figsize=(8, 3.6), constrained_layout=True)
     ax.plot(result["time"], result["w_mid"], lw=0.8)
     ax.axhline(summary.static_w_mid, color="0.6", lw=0.6, ls="--", label="static w_mid")
-    ax.set(xlabel="t [s]", ylabel="w_mid", title="BuckledBeam FMU, default experiment (fmpy)")
+    ax.set(
+        xlabel=label("t"),
+        ylabel=label("w_mid", fmu, "midspan deflection"),
+        title="BuckledBeam FMU, default experiment (fmpy)",
+    )
     ax.legend(loc="upper right", fontsize=8)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return path
 
 
-def section_case(fmu: Path, F: float, Omega: float, transient: int, periods: int, out: Path):  # noqa: ANN201
+def section_case(
+    fmu: Path, F: float, Omega: float, transient: int, periods: int, out: Path
+) -> tuple[CaseResult, Path]:
     """Runs one case and draws its three-panel figure; returns (result, png path)."""
-    from georod_tools.plots import plot_case
-    from georod_tools.runner import CaseConfig, run_case
-
     cfg = CaseConfig(
         fmu=str(fmu),
         F=F,
         Omega=Omega,
         transient_periods=transient,
         sample_periods=periods,
-        n_per_period=40,
         dense_periods=min(20, periods),
-        lyapunov_discard=min(10, periods - 1),
+        align_periods=min(10, periods - 1),
     )
     result = run_case(cfg)
     return result, plot_case(result, out / f"demo_poincare_F{F:g}.png")
 
 
-def run_demo(out: Path, transient: int = 150, periods: int = 150, fmu: Path | None = None) -> int:
-    fmu = fmu or fmu_path("BuckledBeam")
-    if not fmu.is_file():
-        print(f"demo: {fmu} not found; run scripts/build_fmus first", file=sys.stderr)
-        return 1
+def run_demo(
+    out: Path, fmu: Path, transient: int = 150, periods: int = 150, say: Callable = print
+) -> list[Path]:
+    """The demo into the folder `out`; returns the files written (summary.txt last)."""
     t0 = time.perf_counter()
+    lines: list[str] = []
+
+    def tell(text: str) -> None:
+        lines.append(text)
+        say(text)
+
     res = simulate_default(fmu)
     summary = summarize(res)
-    print(summary.text())
-    print(f"wrote {plot_time_series(res, summary, out / 'demo_buckled_beam.png')}")
+    tell(summary.text())
+    files = [plot_time_series(res, summary, out / "demo_buckled_beam.png", fmu)]
     for F, Omega, paper in SECTION_CASES:
         r, png = section_case(fmu, F, Omega, transient, periods, out)
         ly = r.lyapunov
         lam = f"{ly.per_period:.3f} +- {ly.stderr:.3f} per period" if ly else "n/a"
-        print(
+        tell(
             f"F = {F:g}, Omega = {Omega:g} ({transient} + {periods} periods): "
             f"{r.classification.label}, largest Lyapunov exponent {lam}  [{paper}]"
         )
-        print(f"wrote {png}")
-    print(f"demo done in {time.perf_counter() - t0:.1f} s")
-    return 0
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m georod_tools.demo", description=__doc__)
-    p.add_argument("--out", type=Path, default=Path("out"), help="output folder (out)")
-    p.add_argument(
-        "--transient", type=nonnegative_int, default=150, help="transient periods, >= 0 (150)"
-    )
-    p.add_argument("--periods", type=int_range(2), default=150, help="sampled periods, >= 2 (150)")
-    p.add_argument("--fmu", type=Path, help="BuckledBeam FMU (target/fmu/BuckledBeam.fmu)")
-    a = p.parse_args(argv)
-    if a.transient < 0 or a.periods < 2:
-        p.error("--transient must be >= 0 and --periods >= 2")
-    return run_demo(a.out, a.transient, a.periods, a.fmu)
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+        files.append(png)
+    tell(f"demo done in {time.perf_counter() - t0:.1f} s")
+    summary_path = out / "summary.txt"
+    summary_path.write_text("\n".join(lines) + "\n")
+    return [*files, summary_path]

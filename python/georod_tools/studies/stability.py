@@ -1,8 +1,7 @@
-"""Stability study (issue 7): energy histories of the two integrators through the FMUs, and the
-plots of docs/stability.md.
-
-    python -m georod_tools.stability fmu  --out DIR [--steps N]  # integrator 1 vs 2 -> CSV
-    python -m georod_tools.stability plot --csv DIR --out DIR       # every CSV -> PNG
+"""Stability study (docs/stability.md): energy histories of the two integrators through the FMUs,
+and the plots of the energy histories (these and the Rust stability tests' CSV files).
+The command is ``georod-tools study stability`` (scripts/study_stability also runs the Rust
+tests that write their CSV files).
 
 FMU runs: an undamped scene (``d = 0``) is kicked by its excitation for ``kick_periods`` forcing
 periods, then ``F`` is set to 0 and it vibrates freely for ``steps`` communication steps of
@@ -14,15 +13,15 @@ the run and is recorded, never raised.
 
 from __future__ import annotations
 
-import argparse
 import csv
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from georod_tools.argtypes import positive_int
-from georod_tools.runner import FmuError, FmuModel, Instance
+from tqdm import tqdm
+
+from georod_tools.fmu import FmuError, FmuModel, lend
+from georod_tools.report.figures import save
 
 ENERGY_OUTPUTS = ("E_kin", "E_strain", "energy_error", "w_mid")
 
@@ -75,10 +74,6 @@ def run_energy(
 ) -> EnergyRun:
     """One FMU run of `case` with `integrator` (1 midpoint, 2 energy-momentum)."""
     model = FmuModel.load(fmu_dir / f"{case.scene}.fmu")
-    # runner.Instance sets non-"Integer" parameters with fmi2SetReal; an Enumeration is set
-    # with fmi2SetInteger (FMI 2.0), so present it as an Integer.
-    if model.types.get("integrator") == "Enumeration":
-        model.types["integrator"] = "Integer"
     params = {
         "F": case.F,
         "Omega": case.Omega,
@@ -87,40 +82,44 @@ def run_energy(
         "integrator": integrator,
         **dict(case.params),
     }
-    period = 2.0 * math.pi / case.Omega
-    n_per_period = max(1, round(period / case.h))
-    inst = Instance(model, params, case.Omega, n_per_period)
-    vrs = [model.vr[n] for n in ENERGY_OUTPUTS]
+    # Steps of T / n (n = T / h rounded): whole periods of kick, one sub-step each.
+    n_per_period = max(1, round(2.0 * math.pi / case.Omega / case.h))
+    h = 2.0 * math.pi / case.Omega / n_per_period
+    kick = case.kick_periods * n_per_period
+    vrs = ENERGY_OUTPUTS
     out = EnergyRun(case, integrator, [], [], [], [], None, "")
-    try:
+    with lend(model, "stability") as inst:
+        inst.initialize(params)
+        read = inst.reader(vrs)
+        k = 0
         try:
-            for _ in range(case.kick_periods * n_per_period):
-                inst.step()
+            for k in range(kick):
+                inst.step(k * h, h)
         except FmuError as e:
-            out.discarded_at = inst.time
+            out.discarded_at = k * h
             out.message = f"during the kick: {e}"
             return out
-        inst.slave.setReal([model.vr["F"]], [0.0])
-        for k in range(steps + 1):
-            if k % every == 0 or k == steps:
-                e_kin, e_strain, err, w = inst.slave.getReal(vrs)
-                out.times.append(inst.time)
+        inst.set("F", 0.0)
+        desc = f"{case.name}, integrator {integrator}"
+        for j in tqdm(range(steps + 1), desc=desc, unit="step", leave=False, mininterval=1.0):
+            t = (kick + j) * h
+            if j % every == 0 or j == steps:
+                e_kin, e_strain, err, w = read()
+                out.times.append(t)
                 out.energy.append(e_kin + e_strain)
                 out.energy_error.append(err)
                 out.w_mid.append(w)
-            if k < steps:
+            if j < steps:
                 try:
-                    inst.step()
+                    inst.step(t, h)
                 except FmuError as e:
-                    out.discarded_at = inst.time
+                    out.discarded_at = t
                     out.message = str(e)
                     break
-    finally:
-        inst.close()
     return out
 
 
-def write_csv(run: EnergyRun, path: Path) -> None:
+def write_energy_csv(run: EnergyRun, path: Path) -> Path:
     path.parent.mkdir(parents=True, exist_ok=True)
     with path.open("w", newline="") as f:
         f.write(
@@ -135,6 +134,7 @@ def write_csv(run: EnergyRun, path: Path) -> None:
         e0 = run.reference
         for t, e, err, wm in zip(run.times, run.energy, run.energy_error, run.w_mid, strict=False):
             w.writerow([f"{t:.9e}", f"{e:.12e}", f"{(e - e0) / e0:.6e}", f"{err:.6e}", f"{wm:.8e}"])
+    return path
 
 
 def read_csv(path: Path) -> tuple[str, dict[str, list[float]]]:
@@ -154,10 +154,7 @@ def plot_pairs(csv_dir: Path, out_dir: Path) -> list[Path]:
     """For every pair of CSVs `<stem>_Midpoint.csv` / `<stem>_EnergyMomentum.csv` (Rust) or
     `<stem>_int1.csv` / `<stem>_int2.csv` (FMU), a PNG `<stem>.png` with the relative energy
     error of both integrators side by side (symlog scale)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from georod_tools.report.figures import plt
 
     out_dir.mkdir(parents=True, exist_ok=True)
     written = []
@@ -182,12 +179,10 @@ def plot_pairs(csv_dir: Path, out_dir: Path) -> list[Path]:
             y = cols["rel_energy_error"]
             ax.plot(x, y, lw=0.8)
             ax.set_yscale("symlog", linthresh=1e-12)
-            ax.set_xlabel("time [s]" if "time" in cols else "step")
-            ax.set_ylabel("(E - E0) / E0")
+            ax.set_xlabel("t [s]" if "time" in cols else "step [1]")
+            ax.set_ylabel("relative energy change (E - E0) / E0 [1]")
             ax.set_title(label)
             ax.grid(True, alpha=0.3)
-            if len(x) and x[-1] < max(x):
-                pass
             ax.text(
                 0.01,
                 0.02,
@@ -197,61 +192,27 @@ def plot_pairs(csv_dir: Path, out_dir: Path) -> list[Path]:
             )
             fig.suptitle(f"{stem}: {comment[:150]}", fontsize=8)
         fig.tight_layout()
-        path = out_dir / f"{stem}.png"
-        fig.savefig(path, dpi=110)
-        plt.close(fig)
-        written.append(path)
+        written.append(save(fig, out_dir / f"{stem}.png", dpi=110))
     return written
 
 
-def main(argv: Sequence[str] | None = None) -> int:
-    ap = argparse.ArgumentParser(
-        prog="python -m georod_tools.stability",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    sub = ap.add_subparsers(dest="cmd", required=True)
-    f = sub.add_parser("fmu", help="FMU energy runs, integrator 1 vs 2 -> CSV")
-    f.add_argument(
-        "--fmu-dir", type=Path, default=Path("target/fmu"), help="folder of the FMUs (target/fmu)"
-    )
-    f.add_argument("--out", type=Path, required=True, help="CSV folder")
-    f.add_argument(
-        "--steps",
-        type=positive_int,
-        default=100_000,
-        help="free-vibration communication steps, >= 1 (100000)",
-    )
-    f.add_argument(
-        "--every", type=positive_int, default=20, help="steps between CSV rows, >= 1 (20)"
-    )
-    names = [c.name for c in CASES]
-    f.add_argument("--cases", nargs="*", choices=names, default=names, help="cases to run (all)")
-    p = sub.add_parser("plot", help="CSV pairs -> PNG")
-    p.add_argument("--csv", type=Path, required=True, help="folder of the CSV pairs")
-    p.add_argument("--out", type=Path, required=True, help="PNG folder")
-    args = ap.parse_args(argv)
-    if args.cmd == "fmu":
-        for case in (c for c in CASES if c.name in args.cases):
-            for integrator in (1, 2):
-                run = run_energy(args.fmu_dir, case, integrator, args.steps, args.every)
-                final = run.energy_error[-1] if run.energy_error else math.nan
-                write_csv(run, args.out / f"stability_fmu_{case.name}_int{integrator}.csv")
-                print(
-                    f"{case.name:<12} integrator {integrator}: {len(run.times)} samples, "
-                    f"max |dE|/E0 = {run.max_rel_drift():.3e}, "
-                    f"final energy_error = {final:.3e}"
-                    + (
-                        f", DISCARDED at t = {run.discarded_at:.6g}"
-                        if run.discarded_at is not None
-                        else ""
-                    )
-                )
-    else:
-        for path in plot_pairs(args.csv, args.out):
-            print(f"wrote {path}")
-    return 0
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+def run_fmu_cases(
+    fmu_dir: Path, csv_dir: Path, steps: int, every: int, names: list[str], say=print
+) -> list[Path]:
+    """Every case of `names` with both integrators; one CSV each; prints a line per run."""
+    files = []
+    for case in (c for c in CASES if c.name in names):
+        for integrator in (1, 2):
+            run = run_energy(fmu_dir, case, integrator, steps, every)
+            final = run.energy_error[-1] if run.energy_error else math.nan
+            files.append(
+                write_energy_csv(run, csv_dir / f"stability_fmu_{case.name}_int{integrator}.csv")
+            )
+            gone = (
+                f", DISCARDED at t = {run.discarded_at:.6g}" if run.discarded_at is not None else ""
+            )
+            say(
+                f"{case.name:<12} integrator {integrator}: {len(run.times)} samples, "
+                f"max |dE|/E0 = {run.max_rel_drift():.3e}, final energy_error = {final:.3e}{gone}"
+            )
+    return files

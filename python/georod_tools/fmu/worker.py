@@ -1,16 +1,16 @@
-"""Ship an FMU to Dask workers as bytes and run cases there.
+"""Ship an FMU to Dask workers as bytes.
 
 Workers may run on other machines, in another working directory, without the client's files: the
 client reads the ``.fmu`` once (:class:`FmuPayload`) and registers a :class:`FmuPlugin` holding
 its bytes on the scheduler, which installs it on every worker, present and future. Each worker
 writes the bytes into its own local directory, checks the sha256, extracts and loads the FMU once
-(:meth:`georod_tools.runner.FmuModel.load`, cached per process) and checks that its shared library
-loads on this platform. Cases then refer to the FMU by its sha256 (:func:`run_on_worker`), never
-by the client's path.
+(:meth:`georod_tools.fmu.FmuModel.load`, cached per process) and checks that its shared library
+loads on this platform. Cases then refer to the FMU by its sha256 (:func:`worker_fmu_path`),
+never by the client's path.
 
 A worker that cannot load the FMU does not fail the registration: it remembers why, answers
-:func:`worker_fmu_status` with the reason, and any case sent to it fails with a message naming
-the worker and the reason (kind ``worker``).
+:func:`worker_fmu_status` with the reason, and :func:`worker_fmu_path` raises
+:class:`FmuUnavailableError` naming the worker and the reason.
 """
 
 from __future__ import annotations
@@ -21,15 +21,13 @@ import os
 import shutil
 import socket
 import tempfile
-from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from distributed import WorkerPlugin
 
-from georod_tools.failure import FAIL_EXCEPTION, FAIL_FMU, FAIL_WORKER, CaseFailure
-from georod_tools.runner import CaseConfig, CaseResult, FmuError, FmuModel
+from georod_tools.fmu.model import FmuModel
 
 if TYPE_CHECKING:
     from distributed import Client
@@ -66,7 +64,8 @@ class FmuUnavailableError(RuntimeError):
     """No usable FMU on this worker (or on any worker)."""
 
 
-def _worker_address() -> str:
+def worker_address() -> str:
+    """The address of the Dask worker this runs on (host:pid outside a worker)."""
     try:
         from distributed import get_worker
 
@@ -130,7 +129,7 @@ def worker_fmu_path(sha256: str, name: str = "the FMU") -> str:
     if sha256 in _LOADED:
         return _LOADED[sha256]
     why = _ERRORS.get(sha256, "it was never installed here (FmuPlugin not registered)")
-    raise FmuUnavailableError(f"worker {_worker_address()} cannot load {name}: {why}")
+    raise FmuUnavailableError(f"worker {worker_address()} cannot load {name}: {why}")
 
 
 def worker_fmu_status(sha256: str) -> dict[str, Any]:
@@ -165,27 +164,3 @@ def install(client: Client, payload: FmuPayload) -> dict[str, dict[str, Any]]:
         lines = "\n".join(f"  worker {a}: {s['error']}" for a, s in sorted(status.items()))
         raise FmuUnavailableError(f"no worker could load {payload.name}:\n{lines}")
     return status
-
-
-def run_on_worker(
-    cfg: CaseConfig,
-    value: float,
-    sha256: str,
-    name: str,
-    case_fn: Callable[[CaseConfig], CaseResult],
-) -> CaseResult | CaseFailure:
-    """One case on a worker with the worker's copy of the FMU; failures come back as
-    :class:`CaseFailure` (the FMU's status and log, or the exception) instead of raising."""
-    worker = _worker_address()
-    try:
-        local = replace(cfg, fmu=worker_fmu_path(sha256, name))
-    except FmuUnavailableError as e:
-        return CaseFailure(value, FAIL_WORKER, str(e), worker)
-    try:
-        result = case_fn(local)
-    except FmuError as e:
-        return CaseFailure(value, FAIL_FMU, str(e), worker)
-    except Exception as e:  # noqa: BLE001 - recorded with its type, the sweep goes on
-        return CaseFailure(value, FAIL_EXCEPTION, f"{type(e).__name__}: {e}", worker)
-    result.config = cfg
-    return result
