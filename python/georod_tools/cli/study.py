@@ -2,6 +2,7 @@
 ``out/study/`` with its run.json; ``--update-docs`` copies the figures (and tables) into docs/.
 
     georod-tools study paper [--quick] [--workers N] [--parts LIST]   # docs/chaos_buckled_beam.md
+    georod-tools study sensitivity [--quick] [--questions LIST]       # docs/paper_sensitivity.md
     georod-tools study arches [--quick]                               # docs/arches.md
     georod-tools study arch-path --scene PinnedArch [--set H=2]       # one static diagram
     georod-tools study stability [--steps N] [--rust-csv DIR]         # docs/stability.md
@@ -26,7 +27,7 @@ DOCS = REPO_ROOT / "docs" / "figures"
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "study",
-        help="the long studies: paper, arches, arch-path, stability",
+        help="the long studies: paper, sensitivity, arches, arch-path, stability",
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -49,6 +50,24 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     add_output_options(s, f"{DEFAULT_OUT}/paper", "docs/figures/buckled_beam")
     s.set_defaults(run=run_paper, _parser=s)
+
+    from georod_tools.studies.sensitivity import QUESTIONS
+
+    s = studies.add_parser(
+        "sensitivity",
+        help="what the windows of section 6.1 depend on: shortening, mesh, mass, shear, damping, "
+        "loading, time step",
+    )
+    s.add_argument("--quick", action="store_true", help="smoke run: few variants, short cases")
+    s.add_argument("--workers", type=positive_int, default=2, help="Dask workers, >= 1 (2)")
+    s.add_argument(
+        "--questions",
+        default=",".join(QUESTIONS),
+        help=f"comma-separated questions ({','.join(QUESTIONS)})",
+    )
+    s.add_argument("--no-progress", action="store_true", help="no progress bars")
+    add_output_options(s, f"{DEFAULT_OUT}/sensitivity", "docs/figures/buckled_beam")
+    s.set_defaults(run=run_sensitivity, _parser=s)
 
     s = studies.add_parser("arches", help="section 6.2: static paths, frequencies, forced arches")
     s.add_argument("--quick", action="store_true", help="short smoke-test runs")
@@ -127,6 +146,31 @@ def run_paper(
     if args.update_docs:
         write_markdown(st, docs)  # study.md from every table now in docs
     return code
+
+
+def run_sensitivity(
+    parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequence[str]
+) -> int:
+    from georod_tools import fmu_path
+    from georod_tools.studies.sensitivity import QUESTIONS, SensitivitySettings, run_study
+    from georod_tools.studies.sensitivity_report import write_outputs
+
+    questions = tuple(x.strip() for x in args.questions.split(",") if x.strip())
+    if not questions or any(q not in QUESTIONS for q in questions):
+        parser.error(f"--questions {args.questions}: choose from {','.join(QUESTIONS)}")
+    st = SensitivitySettings.make_quick() if args.quick else SensitivitySettings.full()
+    st = replace(st, questions=questions)
+    fmu = fmu_path("BuckledBeam")
+    record = start_run(
+        parser, args, argv, DEFAULT_OUT, "study sensitivity", {"settings": st}, [fmu]
+    )
+    t0 = time.perf_counter()
+    prepared, located = run_study(st, record.folder, args.workers, not args.no_progress)
+    files = write_outputs(prepared, located, record.folder, questions)
+    print((record.folder / "table_sensitivity_derivatives.md").read_text())
+    print(f"study done in {time.perf_counter() - t0:.0f} s")
+    files += sorted((record.folder / "scenes").glob("*.toml"))
+    return finish_run(record, files, args, DOCS / "buckled_beam", "*sensitivity*")
 
 
 def run_arches(
