@@ -48,6 +48,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     s.add_argument(
         "--parts", default=",".join(PARTS), help=f"comma-separated parts to run ({','.join(PARTS)})"
     )
+    s.add_argument(
+        "--setting",
+        choices=("literal", "chosen", "both"),
+        default="literal",
+        help="the paper's literal data (the FMU's defaults), the chosen setting of "
+        "docs/figures/buckled_beam/paper_settings.json, or both side by side (literal)",
+    )
+    s.add_argument("--settings-file", type=Path, help="another settings file for --setting chosen")
     add_output_options(s, f"{DEFAULT_OUT}/paper", "docs/figures/buckled_beam")
     s.set_defaults(run=run_paper, _parser=s)
 
@@ -115,9 +123,14 @@ def run_paper(
     parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequence[str]
 ) -> int:
     from georod_tools import fmu_path
-    from georod_tools.report.tables import markdown
-    from georod_tools.studies.paper import PARTS, StudySettings, run_study
-    from georod_tools.studies.paper_report import case_row, write_markdown, write_outputs
+    from georod_tools.studies.paper import PARTS, StudySettings
+    from georod_tools.studies.paper_setting import (
+        SETTINGS_FILE,
+        PaperSetting,
+        load_setting,
+        side_by_side,
+        write_side_by_side,
+    )
 
     fmu = args.fmu or fmu_path("BuckledBeam")
     parts = [x.strip() for x in args.parts.split(",") if x.strip()]
@@ -127,25 +140,69 @@ def run_paper(
     st = replace(make(str(Path(fmu).resolve())), convergence=not args.no_convergence)
     if args.substeps is not None:
         st = replace(st, substeps=args.substeps)
+    settings: dict[str, PaperSetting] = {}
+    if args.setting in ("literal", "both"):
+        settings["literal"] = PaperSetting(steps_per_period=st.substeps)
+    if args.setting in ("chosen", "both"):
+        path = args.settings_file or SETTINGS_FILE
+        if not path.is_file():
+            parser.error(f"--settings-file {path}: no such file")
+        settings["chosen"] = load_setting(path)
     record = start_run(
-        parser, args, argv, DEFAULT_OUT, "study paper", {"settings": st, "parts": parts}, [fmu]
+        parser,
+        args,
+        argv,
+        DEFAULT_OUT,
+        "study paper",
+        {"settings": st, "parts": parts, "setting": settings},
+        [fmu],
     )
     t0 = time.perf_counter()
+    docs = DOCS / "buckled_beam"
+    files: list[Path] = []
+    cases = {}
+    for name, setting in settings.items():
+        sub = record.folder if len(settings) == 1 else record.folder / name
+        where = docs if name == "literal" else docs / "chosen"
+        got, cases[name] = _paper_at(st, setting, parts, args, sub, where)
+        files += got
+    if len(cases) == 2 and all(cases.values()):
+        rows = side_by_side(cases["literal"], cases["chosen"])
+        files.append(write_side_by_side(rows, settings["chosen"], record.folder))
+        print((record.folder / "table_cases_side_by_side.md").read_text())
+    print(f"study done in {time.perf_counter() - t0:.0f} s")
+    code = finish_run(record, files, args, docs, "table_cases_side_by_side.md")
+    return code
+
+
+def _paper_at(
+    st0: object,
+    setting: object,
+    parts: Sequence[str],
+    args: argparse.Namespace,
+    out: Path,
+    docs: Path,
+) -> tuple[list[Path], list]:
+    """The study's parts at one setting into `out` (with --update-docs also into `docs`)."""
+    from georod_tools.report.records import publish
+    from georod_tools.report.tables import markdown
+    from georod_tools.studies.paper import run_study
+    from georod_tools.studies.paper_report import case_row, write_markdown, write_outputs
+    from georod_tools.studies.paper_setting import apply, setting_text
+
+    out.mkdir(parents=True, exist_ok=True)
+    st = apply(st0, setting, out / "scene")  # type: ignore[arg-type]
+    print(f"== {setting.name}: {setting_text(setting)}")  # type: ignore[attr-defined]
     rep = run_study(st, args.workers, not args.no_progress, parts)
-    files = write_outputs(st, rep, record.folder)
+    files = write_outputs(st, rep, out)
     rows = [case_row(c, r) for c, r in rep.cases]
     if rows:
-        print(
-            markdown(
-                rows, ("case", "F", "Omega", "paper_class", "ours", "lyapunov_per_period", "agrees")
-            )
-        )
-    print(f"study done in {time.perf_counter() - t0:.0f} s")
-    docs = DOCS / "buckled_beam"
-    code = finish_run(record, files, args, docs)
+        cols = ("case", "F", "Omega", "paper_class", "ours", "lyapunov_per_period", "agrees")
+        print(markdown(rows, cols))
     if args.update_docs:
+        publish(files, docs, out)
         write_markdown(st, docs)  # study.md from every table now in docs
-    return code
+    return files, rep.cases
 
 
 def run_sensitivity(

@@ -198,7 +198,7 @@ class SensitivitySettings:
 
 def scan_scale(p: Prepared, ref: Prepared) -> float:
     """The factor on the reference scan range for variant `p` (see :data:`SCALE_BOUNDS`)."""
-    ratio = p.statics.omega_free / ref.statics.omega_free
+    ratio = p.statics.omega1 / ref.statics.omega1
     lo, hi = SCALE_BOUNDS
     return ratio if math.isfinite(ratio) and lo <= ratio <= hi else 1.0
 

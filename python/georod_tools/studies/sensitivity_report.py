@@ -1,13 +1,15 @@
 """Figures and tables of the sensitivity study (:mod:`.sensitivity`).
 
 - ``sensitivity_<question>.png``: one per question: for each variant a strip over Omega coloured
-  by the classification of every case run (scan and bisection), the located edges as ticks, the
+  by the classification of every case run (scan and refinement), the located edges as ticks, the
   paper's panels at F = 0.7 as dashed lines; the first frequency and static deflection in the
   strip's label.
 - ``variants.csv`` / ``table_sensitivity.md``: per variant the statics and every edge.
 - ``derivatives.csv`` / ``table_sensitivity_derivatives.md``: d(edge)/d(parameter) per question
   (shortening: least-squares slope over its values; the others: the change against the
-  reference), in rad/s and in % of the reference position.
+  reference), in % of the reference value.
+- ``table_sensitivity_choice.md``: per edge, the end shortenings that put it inside the paper's
+  bracket, and the one shortening that fits all edges best (:func:`choice_rows`).
 """
 
 from __future__ import annotations
@@ -48,7 +50,7 @@ def _label(p: Prepared, q: str) -> str:
     v = p.variant
     name = REFERENCE_LABEL[q] if v.question == "reference" else v.label
     st = p.statics
-    return f"{name}\nw0={st.w_mid:.3f}, om1={st.omega_free:.0f}"
+    return f"{name}\nw0={st.w_mid:.3f}, om1={st.omega1:.0f}"
 
 
 def plot_question(
@@ -59,7 +61,7 @@ def plot_question(
     for row, p in enumerate(members):
         loc = located[p.variant.name]
         cases = [(c.Omega, r) for c, r in zip(loc.scan, loc.results, strict=True)]
-        cases += [(r.config.Omega, r) for r in loc.bisected]
+        cases += [(r.config.Omega, r) for r in loc.refined]
         cases.sort(key=lambda x: x[0])
         xs = np.array([o for o, _ in cases])
         mids = 0.5 * (xs[1:] + xs[:-1])
@@ -96,6 +98,26 @@ def plot_question(
     return save(fig, path, dpi=110, shrink=True)
 
 
+def case_rows(prepared: Sequence[Prepared], located: dict[str, Located]) -> list[dict]:
+    """Every case run (scan and refinement), by variant and Omega."""
+    rows = []
+    for p in prepared:
+        loc = located[p.variant.name]
+        got = [r for r in loc.results if r is not None] + loc.refined
+        for r in sorted(got, key=lambda r: r.config.Omega):
+            rows.append(
+                {
+                    "question": p.variant.question,
+                    "variant": p.variant.label,
+                    "Omega": r.config.Omega,
+                    "ours": r.classification.label,
+                    "lyapunov_per_period": round(r.exponent_per_period, 4),
+                    "one_well": one_well(r),
+                }
+            )
+    return rows
+
+
 def variant_rows(prepared: Sequence[Prepared], located: dict[str, Located]) -> list[dict]:
     ref = located[prepared[0].variant.name].edges
     rows = []
@@ -110,6 +132,7 @@ def variant_rows(prepared: Sequence[Prepared], located: dict[str, Located]) -> l
             "w_mid": round(st.w_mid, 4),
             "omega_modes": round(st.omega_modes, 1),
             "omega_free": round(st.omega_free, 1),
+            "omega1": round(st.omega1, 1),
         }
         for f in FEATURES:
             e = located[v.name].edges[f.name]
@@ -137,7 +160,7 @@ def derivative_rows(prepared: Sequence[Prepared], located: dict[str, Located]) -
             row: dict[str, object] = {
                 "question": q,
                 "change": f"{REFERENCE_LABEL[q]} -> {p.variant.label}",
-                "omega1_pct": pct(p.statics.omega_free, ref.statics.omega_free),
+                "omega1_pct": pct(p.statics.omega1, ref.statics.omega1),
                 "w_mid_pct": pct(p.statics.w_mid, ref.statics.w_mid),
             }
             for f in FEATURES:
@@ -152,7 +175,7 @@ def derivative_rows(prepared: Sequence[Prepared], located: dict[str, Located]) -
             for m in members
         ]
         row = {"question": "shortening", "change": "slope per +0.001 (least squares)"}
-        row["omega1_pct"] = _slope_pct(xs, [m.statics.omega_free for m in members])
+        row["omega1_pct"] = _slope_pct(xs, [m.statics.omega1 for m in members])
         row["w_mid_pct"] = _slope_pct(xs, [m.statics.w_mid for m in members])
         for f in FEATURES:
             ys = [located[m.variant.name].edges[f.name].position for m in members]
@@ -180,8 +203,9 @@ def write_outputs(
         if len(_members(q, prepared)) > 1
     ]
     var = variant_rows(prepared, located)
+    files.append(write_csv(case_rows(prepared, located), out / "cases.csv"))
     der = derivative_rows(prepared, located)
-    var_cols = ["question", "variant", "w_mid", "omega_modes", "omega_free"]
+    var_cols = ["question", "variant", "w_mid", "omega_modes", "omega_free", "omega1"]
     var_cols += [f.name for f in FEATURES]
     der_cols = ["question", "change", "omega1_pct", "w_mid_pct"]
     der_cols += [f"{f.name}_pct" for f in FEATURES]
@@ -191,4 +215,60 @@ def write_outputs(
         write_csv(der, out / "derivatives.csv"),
         write_text(markdown(der, der_cols), out / "table_sensitivity_derivatives.md"),
     ]
+    if any(p.variant.question == "shortening" for p in prepared):
+        cho = choice_rows(var)
+        files.append(write_text(markdown(cho), out / "table_sensitivity_choice.md"))
     return files
+
+
+def _position(row: dict, name: str) -> float:
+    try:
+        return float(row[name])
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def choice_rows(rows: Sequence[dict], grid: int = 401) -> list[dict]:
+    """From the rows of variants.csv (reference and shortening variants): for every edge, the
+    range of end shortening over which its position (interpolated linearly between the computed
+    shortenings) lies inside the bracket the paper's panels give; and the shortening that
+    minimizes the sum over all edges of the squared distance to their brackets (relative to the
+    bracket's middle): one setting for the whole window structure."""
+    pts = sorted(
+        (float(r["pre_shortening"]), r)
+        for r in rows
+        if r["question"] in ("reference", "shortening")
+    )
+    xs = np.array([x for x, _ in pts])
+    fine = np.linspace(xs.min(), xs.max(), grid)
+    total = np.zeros_like(fine)
+    out = []
+    for f in FEATURES:
+        ys = np.array([_position(r, f.name) for _, r in pts])
+        ok = np.isfinite(ys)
+        lo, hi = f.paper
+        row: dict[str, object] = {"edge": f.name, "meaning": f.label, "paper": f"{lo:g}-{hi:g}"}
+        if ok.sum() < 2:
+            row.update(inside="not located", **{"at_0.11": ""})
+            out.append(row)
+            continue
+        y = np.interp(fine, xs[ok], ys[ok])
+        dist = np.maximum(lo - y, 0.0) + np.maximum(y - hi, 0.0)
+        total += (dist / (0.5 * (lo + hi))) ** 2
+        inside = fine[dist == 0.0]
+        row["inside"] = (
+            f"{inside.min():.4f}-{inside.max():.4f}" if len(inside) else "nowhere in the range"
+        )
+        row["at_0.11"] = round(float(ys[np.argmax(xs)]), 1)
+        out.append(row)
+    best = float(fine[np.argmin(total)])
+    out.append(
+        {
+            "edge": "all",
+            "meaning": "least squares over all edges",
+            "paper": "",
+            "inside": f"best {best:.4f}",
+            "at_0.11": "",
+        }
+    )
+    return out

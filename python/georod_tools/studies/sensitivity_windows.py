@@ -1,5 +1,5 @@
 """Where the main windows of the paper's Figures 3-5 sit in Omega (F = 0.7), per variant: a
-coarse scan over Omega, then bisection of each window edge on the classification.
+coarse scan over Omega, then refinement of each window edge on the classification.
 
 Every case is :func:`georod_tools.analysis.case.run_case` with the same rules (stroboscopic
 samples after a stated transient, the core's Lyapunov exponent, :mod:`..analysis.classify`).
@@ -12,11 +12,13 @@ The features (:data:`FEATURES`), each an edge of a run of scan points:
   ``p2_chaos`` (end of the run of periods 2^n: onset of chaos in the upper well) and ``merge``
   (end of the run of motions that stay in one well: the local chaos spreads over both wells).
 
-An edge lies between a point of the run and its neighbour outside; bisection keeps that
-bracket (the midpoint joins the run or not) for a fixed number of rounds. All brackets of all
-variants advance together, one Dask batch per round. The scan range of a variant is the
-reference range scaled by the variant's first frequency over the reference's, so a variant that
-only rescales the frequencies finds its windows at the same relative places.
+An edge lies between a point of the run and its neighbour outside. Each refinement round runs
+`points_per_round` equally spaced points inside every bracket and keeps the part where the run
+ends (a run tolerates one isolated point outside it, where the start lands on a coexisting
+attractor: :func:`_runs`), so the bracket shrinks by ``points_per_round + 1`` per round. All
+brackets of all variants advance together, one Dask batch per round. The scan range of a
+variant is the reference range scaled by the variant's first frequency over the reference's, so
+a variant that only rescales the frequencies finds its windows at the same relative places.
 """
 
 from __future__ import annotations
@@ -82,20 +84,21 @@ FEATURES: tuple[Feature, ...] = (
         "p3_chaos", "end of the 3*2^n cascade", _is(3), _cascade(3), "bottom", (3430.0, 3460.0)
     ),
     Feature("p2_doubling", "period 2 -> 4", _is(2), _is(2), "bottom", (4150.0, 4200.0)),
-    Feature("p2_chaos", "end of the 2^n cascade", _is(2), _cascade(2), "bottom", (4050.0, 4120.0)),
+    Feature("p2_chaos", "end of the 2^n cascade", _is(2), _cascade(2), "bottom", (4050.0, 4150.0)),
     Feature("merge", "one well -> both wells", _is(2), one_well, "bottom", (4000.0, 4050.0)),
 )
 
 
 @dataclass(frozen=True)
 class WindowSettings:
-    """F, the reference scan (Omega range and count), the bisection rounds and the case
+    """F, the reference scan (Omega range and count), the refinement rounds and the case
     lengths (transient and sampled periods: see docs/paper_sensitivity.md for the choice)."""
 
     F: float = 0.7
     scan: tuple[float, float] = (3250.0, 4600.0)
     scan_count: int = 55
-    rounds: int = 7
+    rounds: int = 3
+    points_per_round: int = 4
     transient: int = 1000
     periods: int = 300
 
@@ -208,17 +211,22 @@ class Located:
     scan: list[CaseConfig]
     results: list[CaseResult | None]
     edges: dict[str, Edge] = field(default_factory=dict)
-    bisected: list[CaseResult] = field(default_factory=list)
+    refined: list[CaseResult] = field(default_factory=list)
 
 
-def _runs(flags: Sequence[bool]) -> list[tuple[int, int]]:
-    out, start = [], None
-    for i, f in enumerate([*flags, False]):
-        if f and start is None:
-            start = i
-        elif not f and start is not None:
-            out.append((start, i - 1))
-            start = None
+def _runs(flags: Sequence[bool], gap: int = 1) -> list[tuple[int, int]]:
+    """Runs ``(first, last)`` of True in `flags`, two runs separated by at most `gap` False
+    entries counting as one (an isolated point where the start lands on a coexisting attractor
+    does not end a window: the reference shows a period-9 orbit at Omega = 3675 inside its
+    period-3 window, for instance)."""
+    out: list[tuple[int, int]] = []
+    for i, f in enumerate(flags):
+        if not f:
+            continue
+        if out and i - out[-1][1] - 1 <= gap:
+            out[-1] = (out[-1][0], i)
+        else:
+            out.append((i, i))
     return out
 
 
@@ -237,6 +245,22 @@ def initial_bracket(feature: Feature, omegas: Sequence[float], results: Sequence
     if b == len(omegas) - 1:
         return Edge(feature.name, note=f"above the scan (> {omegas[-1]:g})")
     return Edge(feature.name, omegas[b], omegas[b + 1])
+
+
+def refine(edge: Edge, side: str, points: Sequence[tuple[float, bool]]) -> None:
+    """Narrows `edge` from the members (True) / non-members among `points` inside it: the run
+    that contains the bracket's inner end (with the same gap tolerance as the scan) ends at the
+    new inner end, and the point beyond it is the new outer end."""
+    inner, outer = (edge.hi, edge.lo) if side == "bottom" else (edge.lo, edge.hi)
+    pts = sorted([(inner, True), (outer, False), *points], reverse=(side == "bottom"))
+    flags = [f for _, f in pts]
+    first_run = _runs(flags)[0]  # starts at the inner end (index 0, a member)
+    end = first_run[1]
+    new_inner, new_outer = pts[end][0], pts[end + 1][0]
+    if side == "bottom":
+        edge.lo, edge.hi = new_outer, new_inner
+    else:
+        edge.lo, edge.hi = new_inner, new_outer
 
 
 def scan_omegas(ws: WindowSettings, scale: float) -> list[float]:
@@ -265,21 +289,25 @@ def locate(
         out[name] = loc
     base = {name: cfgs[0] for name, cfgs in scans.items()}
     features = {f.name: f for f in FEATURES}
-    for k in range(ws.rounds):
-        todo = [
-            (name, e, replace(base[name], Omega=float(f"{e.position:.10g}")))
-            for name, loc in out.items()
-            for e in loc.edges.values()
-            if math.isfinite(e.lo)
-        ]
-        got = runner.run([c for _, _, c in todo], f"bisection {k + 1}/{ws.rounds}")
+    k = ws.points_per_round
+    for rnd in range(ws.rounds):
+        todo = []
+        for name, loc in out.items():
+            for e in loc.edges.values():
+                if not math.isfinite(e.lo):
+                    continue
+                for j in range(1, k + 1):
+                    om = float(f"{e.lo + j * e.width / (k + 1):.10g}")
+                    todo.append((name, e, replace(base[name], Omega=om)))
+        got = runner.run([c for _, _, c in todo], f"refinement {rnd + 1}/{ws.rounds}")
+        points: dict[int, list[tuple[float, bool]]] = {}
         for (name, e, cfg), r in zip(todo, got, strict=True):
             f = features[e.feature]
-            inside = r is not None and f.member(r)
-            if r is not None:
-                out[name].bisected.append(r)
-            if (f.side == "bottom") == inside:
-                e.hi = cfg.Omega
-            else:
-                e.lo = cfg.Omega
+            if r is not None and all(x.config != cfg for x in out[name].refined):
+                out[name].refined.append(r)
+            points.setdefault(id(e), []).append((cfg.Omega, r is not None and f.member(r)))
+        for loc in out.values():
+            for e in loc.edges.values():
+                if id(e) in points:
+                    refine(e, features[e.feature].side, points[id(e)])
     return out
