@@ -53,7 +53,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         choices=("literal", "chosen", "both"),
         default="literal",
         help="the paper's literal data (the FMU's defaults), the chosen setting of "
-        "docs/figures/buckled_beam/paper_settings.json, or both side by side (literal)",
+        "docs/figures/buckled_beam/paper_settings.json, or both: the 26 panels at the literal "
+        "data (with their checks) beside every part at the chosen setting, each in its own "
+        "subfolder (docs: buckled_beam/literal and /chosen) (literal)",
     )
     s.add_argument("--settings-file", type=Path, help="another settings file for --setting chosen")
     add_output_options(s, f"{DEFAULT_OUT}/paper", "docs/figures/buckled_beam")
@@ -162,9 +164,12 @@ def run_paper(
     files: list[Path] = []
     cases = {}
     for name, setting in settings.items():
-        sub = record.folder if len(settings) == 1 else record.folder / name
-        where = docs if name == "literal" else docs / "chosen"
-        got, cases[name] = _paper_at(st, setting, parts, args, sub, where)
+        both = len(settings) == 2
+        sub = record.folder / name if both else record.folder
+        where = docs / name if both or name == "chosen" else docs
+        # side by side: the literal data's table only; every asked part at the chosen setting
+        todo = [p for p in parts if p == "cases"] if both and name == "literal" else parts
+        got, cases[name] = _paper_at(st, setting, todo, args, sub, where)
         files += got
     if len(cases) == 2 and all(cases.values()):
         rows = side_by_side(cases["literal"], cases["chosen"])

@@ -148,10 +148,15 @@ def lines(configs: Sequence[CaseConfig]) -> list[tuple[CaseConfig, str, list[flo
 
 
 def wells(result: CaseResult) -> str:
-    """``both`` when w_mid changes sign over the recorded motion (dense trajectory if kept, else
-    the stroboscopic samples), else ``one (+)`` / ``one (-)``."""
+    """``both`` when w_mid changes sign anywhere in the recorded motion (every stroboscopic
+    sample and, if kept, the dense trajectory of the last periods), else ``one (+)`` /
+    ``one (-)``. (Until issue 15 only the dense window of the last 30 periods counted, which
+    decided by chance for a chaotic motion just past the merging of the two local attractors,
+    whose visits to the other well are rare.)"""
+    w = result.samples[:, 0]
     d = result.dense
-    w = d[:, 1] if d is not None and len(d) else result.samples[:, 0]
+    if d is not None and len(d):
+        w = np.concatenate([w, d[:, 1]])
     if w.min() < 0.0 < w.max():
         return "both"
     return "one (+)" if w.min() >= 0.0 else "one (-)"

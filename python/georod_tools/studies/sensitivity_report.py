@@ -231,9 +231,10 @@ def _position(row: dict, name: str) -> float:
 def choice_rows(rows: Sequence[dict], grid: int = 401) -> list[dict]:
     """From the rows of variants.csv (reference and shortening variants): for every edge, the
     range of end shortening over which its position (interpolated linearly between the computed
-    shortenings) lies inside the bracket the paper's panels give; and the shortening that
-    minimizes the sum over all edges of the squared distance to their brackets (relative to the
-    bracket's middle): one setting for the whole window structure."""
+    shortenings) lies inside the bracket the paper's panels give; then the range over which all
+    edges are inside at once (its middle is the choice: one setting for the whole window
+    structure), or, if there is none, the shortening that minimizes the sum over all edges of
+    the squared distance to their brackets (relative to the bracket's middle)."""
     pts = sorted(
         (float(r["pre_shortening"]), r)
         for r in rows
@@ -262,13 +263,14 @@ def choice_rows(rows: Sequence[dict], grid: int = 401) -> list[dict]:
         row["at_0.11"] = round(float(ys[np.argmax(xs)]), 1)
         out.append(row)
     best = float(fine[np.argmin(total)])
+    every = fine[total == 0.0]
+    text = (
+        f"all inside for {every.min():.4f}-{every.max():.4f}, middle "
+        f"{0.5 * (every.min() + every.max()):.4f}"
+        if len(every)
+        else f"no shortening puts all inside; least squares {best:.4f}"
+    )
     out.append(
-        {
-            "edge": "all",
-            "meaning": "least squares over all edges",
-            "paper": "",
-            "inside": f"best {best:.4f}",
-            "at_0.11": "",
-        }
+        {"edge": "all", "meaning": "every edge at once", "paper": "", "inside": text, "at_0.11": ""}
     )
     return out
