@@ -104,7 +104,7 @@ def test_sensitivity_quick_command(tmp_path: Path) -> None:
     assert _docs_snapshot() == before
     for q in ("shortening", "elements", "mass", "shear", "rotational_damping", "loading"):
         assert (out / f"sensitivity_{q}.png").stat().st_size > 5000, q
-    with (out / "variants.csv").open() as f:
+    with (out / "sensitivity_variants.csv").open() as f:
         rows = {(r["question"], r["variant"]): r for r in csv.DictReader(f)}
     ref = rows[("reference", "reference")]
     w0, om_modes, om_free = (float(ref[k]) for k in ("w_mid", "omega_modes", "omega_free"))

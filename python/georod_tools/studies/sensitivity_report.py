@@ -4,10 +4,10 @@
   by the classification of every case run (scan and refinement), the located edges as ticks, the
   paper's panels at F = 0.7 as dashed lines; the first frequency and static deflection in the
   strip's label.
-- ``variants.csv`` / ``table_sensitivity.md``: per variant the statics and every edge.
-- ``derivatives.csv`` / ``table_sensitivity_derivatives.md``: d(edge)/d(parameter) per question
-  (shortening: least-squares slope over its values; the others: the change against the
-  reference), in % of the reference value.
+- ``sensitivity_variants.csv`` / ``table_sensitivity.md``: per variant the statics and every edge.
+- ``sensitivity_derivatives.csv`` / ``table_sensitivity_derivatives.md``: d(edge)/d(parameter)
+  per question (shortening: least-squares slope over its values; the others: the change against
+  the reference), in % of the reference value.
 - ``table_sensitivity_choice.md``: per edge, the end shortenings that put it inside the paper's
   bracket, and the one shortening that fits all edges best (:func:`choice_rows`).
 """
@@ -203,16 +203,16 @@ def write_outputs(
         if len(_members(q, prepared)) > 1
     ]
     var = variant_rows(prepared, located)
-    files.append(write_csv(case_rows(prepared, located), out / "cases.csv"))
+    files.append(write_csv(case_rows(prepared, located), out / "sensitivity_cases.csv"))
     der = derivative_rows(prepared, located)
     var_cols = ["question", "variant", "w_mid", "omega_modes", "omega_free", "omega1"]
     var_cols += [f.name for f in FEATURES]
     der_cols = ["question", "change", "omega1_pct", "w_mid_pct"]
     der_cols += [f"{f.name}_pct" for f in FEATURES]
     files += [
-        write_csv(var, out / "variants.csv"),
+        write_csv(var, out / "sensitivity_variants.csv"),
         write_text(markdown(var, var_cols), out / "table_sensitivity.md"),
-        write_csv(der, out / "derivatives.csv"),
+        write_csv(der, out / "sensitivity_derivatives.csv"),
         write_text(markdown(der, der_cols), out / "table_sensitivity_derivatives.md"),
     ]
     if any(p.variant.question == "shortening" for p in prepared):
@@ -229,10 +229,10 @@ def _position(row: dict, name: str) -> float:
 
 
 def choice_rows(rows: Sequence[dict], grid: int = 401) -> list[dict]:
-    """From the rows of variants.csv (reference and shortening variants): for every edge, the
-    range of end shortening over which its position (interpolated linearly between the computed
-    shortenings) lies inside the bracket the paper's panels give; then the range over which all
-    edges are inside at once (its middle is the choice: one setting for the whole window
+    """From the rows of sensitivity_variants.csv (reference and shortening variants): for every
+    edge, the range of end shortening over which its position (interpolated linearly between the
+    computed shortenings) lies inside the bracket the paper's panels give; then the range over
+    which all edges are inside at once (its middle is the choice: one setting for the whole window
     structure), or, if there is none, the shortening that minimizes the sum over all edges of
     the squared distance to their brackets (relative to the bracket's middle)."""
     pts = sorted(
