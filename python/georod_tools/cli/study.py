@@ -169,7 +169,9 @@ def run_paper(
         where = docs / name if both or name == "chosen" else docs
         # side by side: the literal data's table only; every asked part at the chosen setting
         todo = [p for p in parts if p == "cases"] if both and name == "literal" else parts
-        got, cases[name] = _paper_at(st, setting, todo, args, sub, where)
+        # beside the chosen setting, the literal data's per-panel figures stay in the run folder
+        skip = "cases" if both and name == "literal" else None
+        got, cases[name] = _paper_at(st, setting, todo, args, sub, where, skip)
         files += got
     if len(cases) == 2 and all(cases.values()):
         rows = side_by_side(cases["literal"], cases["chosen"])
@@ -187,6 +189,7 @@ def _paper_at(
     args: argparse.Namespace,
     out: Path,
     docs: Path,
+    keep_out_of_docs: str | None = None,
 ) -> tuple[list[Path], list]:
     """The study's parts at one setting into `out` (with --update-docs also into `docs`)."""
     from georod_tools.report.records import publish
@@ -205,7 +208,8 @@ def _paper_at(
         cols = ("case", "F", "Omega", "paper_class", "ours", "lyapunov_per_period", "agrees")
         print(markdown(rows, cols))
     if args.update_docs:
-        publish(files, docs, out)
+        skip = out / keep_out_of_docs if keep_out_of_docs else None
+        publish([f for f in files if skip is None or skip not in f.parents], docs, out)
         write_markdown(st, docs)  # study.md from every table now in docs
     return files, rep.cases
 
