@@ -146,3 +146,33 @@ fn good_command_lines_run_and_run_failures_are_status_1() {
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     assert!(text(&out.stderr).contains("no scene `NoSuchScene`"));
 }
+
+/// A reader that closes the pipe early ends `georod` quietly, not with a panic.
+#[test]
+fn a_closed_pipe_ends_the_command_quietly() {
+    use std::io::Read;
+    use std::process::{Command, Stdio};
+    // 5000 rows of CSV, far more than a pipe buffers (64 KiB).
+    let mut child = Command::new(env!("CARGO_BIN_EXE_georod"))
+        .args([
+            "simulate",
+            "--scene",
+            "BuckledBeam",
+            "--step",
+            "1e-5",
+            "--stop",
+            "0.05",
+        ])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = [0u8; 16];
+    child.stdout.take().unwrap().read_exact(&mut first).unwrap();
+    // The read end is closed here: the rest of the listing meets a broken pipe.
+    let out = child.wait_with_output().unwrap();
+    let stderr = text(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_ne!(out.status.code(), Some(101), "{stderr}");
+}

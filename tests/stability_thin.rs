@@ -4,7 +4,7 @@
 //!   to `P L^2 / EI = 10` (tip rotation about 80 degrees), against the exact solution of the same
 //!   continuum (`common::cantilever_tip`, stretch and shear included). Three ways to get there:
 //!   plain load steps of 0.5, finer load steps of 0.1, and the arc-length continuation of
-//!   `src/integrator/continuation.rs` (followed by one Newton solve at the exact target load).
+//!   `src/integrator/continuation/` (followed by one Newton solve at the exact target load).
 //! - Dynamic: the simply supported rod (right end on a roller) released from its first mode
 //!   shape, undamped, implicit midpoint with 100 steps per period: the measured period against
 //!   the Timoshenko beam's (`common::timoshenko_bending_omega`), and the Newton iterations.

@@ -15,7 +15,10 @@ import pytest
 
 from georod_tools.report.records import ResultLog
 
-COUNT = 8
+# Enough cases that the kill lands mid-sweep even when the client, starved of CPU on a busy
+# machine, writes several finished cases at once (with 8 cases a loaded CI machine once saw all
+# 8 written before the kill).
+COUNT = 24
 KILL_AFTER = 3  # finished cases
 
 

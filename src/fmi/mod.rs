@@ -17,7 +17,8 @@
 //! - [`state_check`]: field checks of a deserialized state;
 //! - [`state_registry`]: the state handles an instance gave out (opaque tokens, never reused,
 //!   checked before any use);
-//! - [`api`]: the exported `extern "C"` functions;
+//! - [`api`]: the exported `extern "C"` functions, by concern (life cycle, values, FMU states,
+//!   stepping);
 //! - [`uri`]: `fmuResourceLocation` parsing.
 pub mod api;
 pub mod fmu_state;

@@ -2,7 +2,7 @@
 //! block (scene parameters from 100, inputs from 1000, sensors from 2000, reactions from 3000,
 //! shape samples from 10000 and 20000). A scene that breaks either is refused with the key
 //! that makes it.
-use super::check::{entry, item};
+use super::checker::{entry, item};
 use super::params::SCENE_PARAM_VR;
 use super::variables::{
     INPUT_VR, MAX_INPUTS, MAX_SCENE_PARAMS, MAX_SENSORS, MAX_SUPPORTS, REACTION_SUFFIXES,

@@ -1,6 +1,6 @@
 //! Checks of the scene's items: `[[support]]`, `[[load]]` (which also declare the scene's
 //! inputs) and `[[sensor]]`.
-use super::check::{entry, Checker};
+use super::checker::{entry, Checker};
 use super::file::{LoadFile, SensorFile, SupportFile};
 use super::params::{Param, Variability};
 use super::{

@@ -6,6 +6,7 @@
 //! the file, the key and what is allowed; the packager, the core and the FMU all read scenes
 //! through it.
 mod check;
+mod checker;
 mod claims;
 mod file;
 mod items;

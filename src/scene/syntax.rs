@@ -2,7 +2,7 @@
 //! crate reports a wrong type or an unknown key with a byte span only; this module finds the
 //! key at that span (walking the document's spans with `toml_edit`) and says what is allowed
 //! in words ("a number", "an array of strings", ...).
-use super::check::{entry, item};
+use super::checker::{entry, item};
 use super::file::SceneFile;
 use super::SceneError;
 use std::ops::Range;

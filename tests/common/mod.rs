@@ -378,6 +378,13 @@ pub fn output(sim: &georod::simulation::Simulation, name: &str) -> f64 {
         .unwrap_or_else(|| panic!("no output {name}"))
 }
 
+/// The first `k` Lyapunov exponents of a simulation (outputs `lyapunov[1]` .. `lyapunov[k]`).
+pub fn lyapunov_exponents(sim: &Simulation, k: usize) -> Vec<f64> {
+    (1..=k)
+        .map(|j| output(sim, &format!("lyapunov[{j}]")))
+        .collect()
+}
+
 /// One communication step of `h` with the control force `f_ctrl` held.
 pub fn advance(sim: &mut Simulation, h: f64, f_ctrl: f64) -> Result<AdvanceReport, SimError> {
     set_input(sim, "f_ctrl", f_ctrl);

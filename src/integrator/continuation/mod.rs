@@ -14,6 +14,19 @@
 //! equilibria of an arch). Note: on a perfectly symmetric structure the path stays on the
 //! symmetric branch through a symmetry-breaking bifurcation (the asymmetric branch is only
 //! reached with an imperfection).
+//!
+//! This file holds the path following itself (predictor, arc-length corrector, step-size
+//! control); `critical.rs` finds and classifies the critical points of a traced path,
+//! `equilibria.rs` the equilibria at a given load, both by the bisection of `bisection.rs`.
+mod bisection;
+mod critical;
+mod equilibria;
+
+pub use critical::{
+    critical_points, refine_critical_points, CriticalKind, CriticalPoint, RefinedCritical,
+};
+pub use equilibria::{equilibria_at_load, Equilibrium};
+
 use super::newton::{inf_norm, NewtonSettings};
 use crate::model::Rod;
 use crate::solver::BlockTridiagonal;
@@ -65,23 +78,6 @@ pub struct PathPoint {
     /// Negative eigenvalues of the tangent: 0 on stable branches.
     pub negative_eigenvalues: usize,
     pub iterations: u32,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CriticalKind {
-    /// The load factor has a local extremum (snap-through under load control).
-    LimitPoint,
-    /// The stability changes without a turn in the load (a branch crosses the path).
-    Bifurcation,
-}
-
-/// A critical point between path points `index - 1` and `index`; `load` is interpolated (for a
-/// limit point: the vertex of the parabola through the three points around the turn).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CriticalPoint {
-    pub index: usize,
-    pub kind: CriticalKind,
-    pub load: f64,
 }
 
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -278,202 +274,6 @@ fn correct(
     None
 }
 
-/// The critical points of a path: where the number of negative tangent eigenvalues changes.
-pub fn critical_points(path: &Path) -> Vec<CriticalPoint> {
-    let p = &path.points;
-    let mut found = Vec::new();
-    for i in 1..p.len() {
-        if p[i].negative_eigenvalues == p[i - 1].negative_eigenvalues {
-            continue;
-        }
-        let turns = |j: usize| {
-            j >= 1
-                && j + 1 < p.len()
-                && (p[j].load - p[j - 1].load) * (p[j + 1].load - p[j].load) < 0.0
-        };
-        // Where the load turns next to the change, refine by a parabola through three points.
-        let vertex = [i - 1, i].into_iter().find(|&j| turns(j));
-        match vertex {
-            Some(j) => {
-                let (y0, y1, y2) = (p[j - 1].load, p[j].load, p[j + 1].load);
-                let curvature = y0 - 2.0 * y1 + y2;
-                let load = if curvature != 0.0 {
-                    y1 - 0.125 * (y2 - y0).powi(2) / curvature
-                } else {
-                    y1
-                };
-                found.push(CriticalPoint {
-                    index: i,
-                    kind: CriticalKind::LimitPoint,
-                    load,
-                });
-            }
-            None => found.push(CriticalPoint {
-                index: i,
-                kind: CriticalKind::Bifurcation,
-                load: 0.5 * (p[i].load + p[i - 1].load),
-            }),
-        }
-    }
-    found
-}
-
-/// A critical point located to round-off: the load at the change of the tangent's inertia, the
-/// state there (the last point before the change) and the inertia on both sides.
-#[derive(Clone, Debug, PartialEq)]
-pub struct RefinedCritical {
-    /// The path increment (`index - 1` to `index`) that crossed it.
-    pub index: usize,
-    pub kind: CriticalKind,
-    pub load: f64,
-    pub u: Vec<f64>,
-    pub negative_before: usize,
-    pub negative_after: usize,
-    /// Arc length of the bracket left by the bisection.
-    pub bracket: f64,
-}
-
-/// A point of the path re-solved at arc length `s` from `path.points[i - 1]` towards
-/// `path.points[i]` (secant predictor, then the arc-length corrector).
-fn resolve_partial(
-    rod: &Rod,
-    q: &[f64],
-    path: &Path,
-    i: usize,
-    s: f64,
-    w: &mut Work,
-    settings: &ContinuationSettings,
-) -> Option<PathPoint> {
-    let (a, b) = (&path.points[i - 1], &path.points[i]);
-    let chord = dot_diff(&b.u, &a.u).sqrt();
-    if chord == 0.0 {
-        return None;
-    }
-    let f = s / chord;
-    let mut du: Vec<f64> = b.u.iter().zip(&a.u).map(|(x, y)| f * (x - y)).collect();
-    let mut dload = f * (b.load - a.load);
-    let mut u = vec![0.0; rod.dofs()];
-    let iterations = correct(rod, q, a, &mut du, &mut dload, s, &mut u, w, settings)?;
-    let negative = if w.factor(rod, &u) {
-        w.jac.negative_eigenvalues()
-    } else {
-        usize::MAX
-    };
-    Some(PathPoint {
-        load: a.load + dload,
-        u,
-        negative_eigenvalues: negative,
-        iterations,
-    })
-}
-
-fn dot_diff(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| (x - y) * (x - y)).sum()
-}
-
-/// Bisection on the arc length of increment `i` for the first point where `flip` turns true
-/// (`flip` is false at `path.points[i - 1]`, true at `path.points[i]`). Returns the last points
-/// before and after, and the bracket length.
-fn bisect(
-    rod: &Rod,
-    q: &[f64],
-    path: &Path,
-    i: usize,
-    settings: &ContinuationSettings,
-    flip: impl Fn(&PathPoint) -> bool,
-) -> (PathPoint, PathPoint, f64) {
-    let mut w = Work {
-        jac: BlockTridiagonal::new(rod.nodes()),
-        f: vec![0.0; rod.dofs()],
-        du_q: vec![0.0; rod.dofs()],
-        du_r: vec![0.0; rod.dofs()],
-    };
-    let chord = dot_diff(&path.points[i].u, &path.points[i - 1].u).sqrt();
-    let (mut lo, mut hi) = (0.0, chord);
-    let mut before = path.points[i - 1].clone();
-    let mut after = path.points[i].clone();
-    for _ in 0..60 {
-        if hi - lo <= 1e-13 * chord.max(1e-300) + 1e-15 * rod.curve.length() {
-            break;
-        }
-        let mid = 0.5 * (lo + hi);
-        match resolve_partial(rod, q, path, i, mid, &mut w, settings) {
-            Some(p) if flip(&p) => {
-                hi = mid;
-                after = p;
-            }
-            Some(p) => {
-                lo = mid;
-                before = p;
-            }
-            None => break,
-        }
-    }
-    (before, after, hi - lo)
-}
-
-/// `K_T(u)^-1 q` (None if singular).
-fn tangent_direction(rod: &Rod, q: &[f64], u: &[f64]) -> Option<Vec<f64>> {
-    let mut w = Work {
-        jac: BlockTridiagonal::new(rod.nodes()),
-        f: vec![0.0; rod.dofs()],
-        du_q: q.to_vec(),
-        du_r: vec![0.0; rod.dofs()],
-    };
-    if !w.factor(rod, u) {
-        return None;
-    }
-    w.jac.solve_in_place(&mut w.du_q);
-    Some(w.du_q)
-}
-
-/// Every critical point of `path` (a change of the number of negative tangent eigenvalues between
-/// consecutive points) located by bisection on the arc length, and classified by the tangent:
-/// a limit point where the load component of the oriented path tangent changes sign.
-pub fn refine_critical_points(
-    rod: &Rod,
-    q: &[f64],
-    path: &Path,
-    settings: &ContinuationSettings,
-) -> Vec<RefinedCritical> {
-    let mut q = q.to_vec();
-    rod.zero_constrained(&mut q);
-    let p = &path.points;
-    let mut found = Vec::new();
-    for i in 1..p.len() {
-        let n0 = p[i - 1].negative_eigenvalues;
-        if p[i].negative_eigenvalues == n0 || n0 == usize::MAX {
-            continue;
-        }
-        let (before, after, bracket) = bisect(rod, &q, path, i, settings, |pt| {
-            pt.negative_eigenvalues != n0
-        });
-        // Orientation of the path: the increment's chord. dlambda/ds has the sign of
-        // chord . K^-1 q (the tangent is (K^-1 q, 1) up to a factor).
-        let chord: Vec<f64> = p[i].u.iter().zip(&p[i - 1].u).map(|(a, b)| a - b).collect();
-        let sign = |u: &[f64]| tangent_direction(rod, &q, u).map(|t| dot(&chord, &t).signum());
-        let turns = match (sign(&before.u), sign(&after.u)) {
-            (Some(a), Some(b)) => a != b,
-            // Fall back on the loads around the point.
-            _ => (before.load - p[i - 1].load) * (p[i].load - after.load) < 0.0,
-        };
-        found.push(RefinedCritical {
-            index: i,
-            kind: if turns {
-                CriticalKind::LimitPoint
-            } else {
-                CriticalKind::Bifurcation
-            },
-            load: 0.5 * (before.load + after.load),
-            u: before.u.clone(),
-            negative_before: n0,
-            negative_after: after.negative_eigenvalues,
-            bracket,
-        });
-    }
-    found
-}
-
 /// The path traced both ways from `u0` at `load0` (first increasing, then decreasing load, each
 /// with `settings` but its own `initial_direction`), joined into one path that runs from the end
 /// of the decreasing half through the start to the end of the increasing half. The start point
@@ -518,67 +318,4 @@ pub fn follow_both_ways(
         },
         start,
     )
-}
-
-/// An equilibrium of the path at a prescribed load.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Equilibrium {
-    pub load: f64,
-    pub u: Vec<f64>,
-    pub negative_eigenvalues: usize,
-    /// Index of the path point after the crossing (or at it).
-    pub index: usize,
-}
-
-/// Every equilibrium where `path` crosses `load`: bisection on the arc length of the crossing
-/// increment, then Newton at exactly `load` (fixed load) from the bracketing point.
-pub fn equilibria_at_load(
-    rod: &Rod,
-    q: &[f64],
-    path: &Path,
-    load: f64,
-    settings: &ContinuationSettings,
-) -> Vec<Equilibrium> {
-    let mut q = q.to_vec();
-    rod.zero_constrained(&mut q);
-    let p = &path.points;
-    let mut found = Vec::new();
-    let side = |x: f64| (x - load).signum();
-    for i in 0..p.len() {
-        let start = if p[i].load == load {
-            Some(p[i].u.clone())
-        } else if i > 0 && p[i - 1].load != load && side(p[i - 1].load) != side(p[i].load) {
-            let s0 = side(p[i - 1].load);
-            let (before, after, _) = bisect(rod, &q, path, i, settings, |pt| side(pt.load) != s0);
-            Some(if (before.load - load).abs() <= (after.load - load).abs() {
-                before.u
-            } else {
-                after.u
-            })
-        } else {
-            None
-        };
-        let Some(mut u) = start else { continue };
-        let mut solver = super::StaticSolver::new(rod);
-        let f_ext: Vec<f64> = q.iter().map(|x| load * x).collect();
-        if solver.solve(rod, &mut u, &f_ext).is_err() {
-            continue;
-        }
-        let mut jac = BlockTridiagonal::new(rod.nodes());
-        let mut f = vec![0.0; rod.dofs()];
-        rod.internal_force_and_tangent(&u, &mut f, &mut jac, 1.0);
-        jac.constrain(&rod.fixed);
-        let negative = if jac.factor().is_ok() {
-            jac.negative_eigenvalues()
-        } else {
-            usize::MAX
-        };
-        found.push(Equilibrium {
-            load,
-            u,
-            negative_eigenvalues: negative,
-            index: i,
-        });
-    }
-    found
 }

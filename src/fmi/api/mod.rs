@@ -1,0 +1,159 @@
+//! The exported FMI 2.0 Co-Simulation functions: thin C wrappers around [`Instance`].
+//!
+//! Every wrapper (1) checks the instance pointer (NULL, alignment, magic number), (2) runs the
+//! call inside `catch_unwind` so that no panic crosses the C boundary (a panic puts the instance
+//! in the `error` state and is reported as `fmi2Error`), (3) checks every other pointer and turns
+//! C arrays into slices, (4) delegates to `Instance` and logs a refusal as `"<function>: why"`.
+//!
+//! The functions are `unsafe extern "C"`: their safety contract is the FMI 2.0 standard's (valid
+//! pointers with the stated lengths); everything that can be checked cheaply is checked.
+//!
+//! This file holds the helpers every wrapper uses (`with_instance`, the pointer checks); the
+//! wrappers are grouped by concern and re-exported here, so each keeps its `fmi::api::` path:
+//! - `lifecycle`: version and platform, debug logging, instantiate and free, experiment setup,
+//!   initialization mode, terminate, reset;
+//! - `values`: get and set Real/Integer/Boolean/String, input and output derivatives;
+//! - `states`: get, set, free, serialize and deserialize FMU states;
+//! - `stepping`: doStep, cancelStep and the status queries.
+// Names follow the C headers (fmi2GetReal, loggingOn, fmi2Terminated, ...); the allowance holds
+// for the submodules too.
+#![allow(clippy::missing_safety_doc, non_snake_case, non_upper_case_globals)]
+
+mod lifecycle;
+mod states;
+mod stepping;
+mod values;
+
+pub use lifecycle::*;
+pub use states::*;
+pub use stepping::*;
+pub use values::*;
+
+use super::instance::{error, Failure, FmiResult, Instance};
+use super::types::*;
+use std::ffi::CStr;
+use std::os::raw::c_char;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic payload".to_string())
+}
+
+/// Runs `f` on the instance behind `c` and turns its result into an `fmi2Status`, logging
+/// failures. A bad instance pointer is `fmi2Error` without a message (there is no logger).
+fn with_instance(
+    c: fmi2Component,
+    func: &'static str,
+    f: impl FnOnce(&mut Instance) -> FmiResult,
+) -> fmi2Status {
+    // SAFETY: best-effort check of the host's pointer (see Instance::from_raw).
+    let Some(inst) = (unsafe { Instance::from_raw(c) }) else {
+        return fmi2Status::Error;
+    };
+    let ptr: *mut Instance = inst;
+    // SAFETY: `ptr` is the live instance; the closure holds the only reference while it runs.
+    match catch_unwind(AssertUnwindSafe(|| f(unsafe { &mut *ptr }))) {
+        Ok(Ok(())) => fmi2Status::OK,
+        Ok(Err(failure)) => {
+            // SAFETY: as above; the closure's reference is gone.
+            let inst = unsafe { &*ptr };
+            match failure {
+                Failure::Error(why) => {
+                    inst.log.error(&format!("{func}: {why}"));
+                    fmi2Status::Error
+                }
+                Failure::Discard(why) => {
+                    inst.log.discard(&format!("{func}: {why}"));
+                    fmi2Status::Discard
+                }
+            }
+        }
+        Err(payload) => {
+            // SAFETY: as above; the panic unwound out of the closure.
+            let inst = unsafe { &mut *ptr };
+            inst.poison();
+            inst.log.error(&format!(
+                "{func}: internal error (Rust panic: {}); the instance is now in the error state",
+                panic_text(payload.as_ref())
+            ));
+            fmi2Status::Error
+        }
+    }
+}
+
+/// A C input array as a slice (`n == 0` allows NULL).
+unsafe fn input<'a, T>(p: *const T, n: usize, what: &str) -> FmiResult<&'a [T]> {
+    if n == 0 {
+        return Ok(&[]);
+    }
+    if p.is_null() {
+        return error(format!("{what} is NULL but its length is {n}"));
+    }
+    if !p.is_aligned() || n > isize::MAX as usize / std::mem::size_of::<T>().max(1) {
+        return error(format!(
+            "{what}: misaligned pointer or impossible length {n}"
+        ));
+    }
+    Ok(std::slice::from_raw_parts(p, n))
+}
+
+/// A C output array as a slice (`n == 0` allows NULL).
+unsafe fn output<'a, T>(p: *mut T, n: usize, what: &str) -> FmiResult<&'a mut [T]> {
+    if n == 0 {
+        return Ok(&mut []);
+    }
+    input(p as *const T, n, what)?;
+    Ok(std::slice::from_raw_parts_mut(p, n))
+}
+
+/// A single C output value.
+unsafe fn out_ref<'a, T>(p: *mut T, what: &str) -> FmiResult<&'a mut T> {
+    Ok(&mut output(p, 1, what)?[0])
+}
+
+/// A C string as UTF-8 (lossy); `None` for NULL.
+unsafe fn string(p: *const c_char) -> Option<String> {
+    (!p.is_null()).then(|| CStr::from_ptr(p).to_string_lossy().into_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_is_caught_and_poisons_only_its_instance() {
+        let dir = std::env::temp_dir().join(format!("georod-api-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let source = std::fs::read_to_string("scenes/BuckledBeam.toml").unwrap();
+        std::fs::write(dir.join(crate::packaging::SCENE_RESOURCE), &source).unwrap();
+        let scene = crate::scene::Scene::parse(&source, "BuckledBeam.toml").unwrap();
+        let guid = crate::packaging::model_description::model_description(&scene).guid;
+        let guid = std::ffi::CString::new(guid).unwrap();
+        let uri = std::ffi::CString::new(format!("file://{}", dir.display())).unwrap();
+        unsafe {
+            let c = fmi2Instantiate(
+                c"p".as_ptr(),
+                fmi2CoSimulation,
+                guid.as_ptr(),
+                uri.as_ptr(),
+                std::ptr::null(),
+                fmi2False,
+                fmi2False,
+            );
+            assert!(!c.is_null());
+            let status = with_instance(c, "fmi2Test", |_| panic!("boom"));
+            assert_eq!(status, fmi2Status::Error);
+            let inst = Instance::from_raw(c).unwrap();
+            assert_eq!(inst.state(), super::super::instance::FmiState::Error);
+            // The error state allows a reset, after which the instance works again.
+            assert_eq!(fmi2Reset(c), fmi2Status::OK);
+            assert_eq!(fmi2EnterInitializationMode(c), fmi2Status::OK);
+            fmi2FreeInstance(c);
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
