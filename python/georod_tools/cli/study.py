@@ -2,6 +2,7 @@
 ``out/study/`` with its run.json; ``--update-docs`` copies the figures (and tables) into docs/.
 
     georod-tools study paper [--quick] [--workers N] [--parts LIST]   # docs/chaos_buckled_beam.md
+    georod-tools study sensitivity [--quick] [--questions LIST]       # docs/paper_sensitivity.md
     georod-tools study arches [--quick]                               # docs/arches.md
     georod-tools study arch-path --scene PinnedArch [--set H=2]       # one static diagram
     georod-tools study stability [--steps N] [--rust-csv DIR]         # docs/stability.md
@@ -26,7 +27,7 @@ DOCS = REPO_ROOT / "docs" / "figures"
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "study",
-        help="the long studies: paper, arches, arch-path, stability",
+        help="the long studies: paper, sensitivity, arches, arch-path, stability",
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -47,8 +48,36 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     s.add_argument(
         "--parts", default=",".join(PARTS), help=f"comma-separated parts to run ({','.join(PARTS)})"
     )
+    s.add_argument(
+        "--setting",
+        choices=("literal", "chosen", "both"),
+        default="literal",
+        help="the paper's literal data (the FMU's defaults), the chosen setting of "
+        "docs/figures/buckled_beam/paper_settings.json, or both: the 26 panels at the literal "
+        "data (with their checks) beside every part at the chosen setting, each in its own "
+        "subfolder (docs: buckled_beam/literal and /chosen) (literal)",
+    )
+    s.add_argument("--settings-file", type=Path, help="another settings file for --setting chosen")
     add_output_options(s, f"{DEFAULT_OUT}/paper", "docs/figures/buckled_beam")
     s.set_defaults(run=run_paper, _parser=s)
+
+    from georod_tools.studies.sensitivity import QUESTIONS
+
+    s = studies.add_parser(
+        "sensitivity",
+        help="what the windows of section 6.1 depend on: shortening, mesh, mass, shear, damping, "
+        "loading, time step",
+    )
+    s.add_argument("--quick", action="store_true", help="smoke run: few variants, short cases")
+    s.add_argument("--workers", type=positive_int, default=2, help="Dask workers, >= 1 (2)")
+    s.add_argument(
+        "--questions",
+        default=",".join(QUESTIONS),
+        help=f"comma-separated questions ({','.join(QUESTIONS)})",
+    )
+    s.add_argument("--no-progress", action="store_true", help="no progress bars")
+    add_output_options(s, f"{DEFAULT_OUT}/sensitivity", "docs/figures/buckled_beam")
+    s.set_defaults(run=run_sensitivity, _parser=s)
 
     s = studies.add_parser("arches", help="section 6.2: static paths, frequencies, forced arches")
     s.add_argument("--quick", action="store_true", help="short smoke-test runs")
@@ -96,9 +125,14 @@ def run_paper(
     parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequence[str]
 ) -> int:
     from georod_tools import fmu_path
-    from georod_tools.report.tables import markdown
-    from georod_tools.studies.paper import PARTS, StudySettings, run_study
-    from georod_tools.studies.paper_report import case_row, write_markdown, write_outputs
+    from georod_tools.studies.paper import PARTS, StudySettings
+    from georod_tools.studies.paper_setting import (
+        SETTINGS_FILE,
+        PaperSetting,
+        load_setting,
+        side_by_side,
+        write_side_by_side,
+    )
 
     fmu = args.fmu or fmu_path("BuckledBeam")
     parts = [x.strip() for x in args.parts.split(",") if x.strip()]
@@ -108,25 +142,101 @@ def run_paper(
     st = replace(make(str(Path(fmu).resolve())), convergence=not args.no_convergence)
     if args.substeps is not None:
         st = replace(st, substeps=args.substeps)
+    settings: dict[str, PaperSetting] = {}
+    if args.setting in ("literal", "both"):
+        settings["literal"] = PaperSetting(steps_per_period=st.substeps)
+    if args.setting in ("chosen", "both"):
+        path = args.settings_file or SETTINGS_FILE
+        if not path.is_file():
+            parser.error(f"--settings-file {path}: no such file")
+        settings["chosen"] = load_setting(path)
     record = start_run(
-        parser, args, argv, DEFAULT_OUT, "study paper", {"settings": st, "parts": parts}, [fmu]
+        parser,
+        args,
+        argv,
+        DEFAULT_OUT,
+        "study paper",
+        {"settings": st, "parts": parts, "setting": settings},
+        [fmu],
     )
     t0 = time.perf_counter()
+    docs = DOCS / "buckled_beam"
+    files: list[Path] = []
+    cases = {}
+    for name, setting in settings.items():
+        both = len(settings) == 2
+        sub = record.folder / name if both else record.folder
+        where = docs / name if both or name == "chosen" else docs
+        # side by side: the literal data's table only; every asked part at the chosen setting
+        todo = [p for p in parts if p == "cases"] if both and name == "literal" else parts
+        # beside the chosen setting, the literal data's per-panel figures stay in the run folder
+        skip = "cases" if both and name == "literal" else None
+        got, cases[name] = _paper_at(st, setting, todo, args, sub, where, skip)
+        files += got
+    if len(cases) == 2 and all(cases.values()):
+        rows = side_by_side(cases["literal"], cases["chosen"])
+        files.append(write_side_by_side(rows, settings["chosen"], record.folder))
+        print((record.folder / "table_cases_side_by_side.md").read_text())
+    print(f"study done in {time.perf_counter() - t0:.0f} s")
+    code = finish_run(record, files, args, docs, "table_cases_side_by_side.md")
+    return code
+
+
+def _paper_at(
+    st0: object,
+    setting: object,
+    parts: Sequence[str],
+    args: argparse.Namespace,
+    out: Path,
+    docs: Path,
+    keep_out_of_docs: str | None = None,
+) -> tuple[list[Path], list]:
+    """The study's parts at one setting into `out` (with --update-docs also into `docs`)."""
+    from georod_tools.report.records import publish
+    from georod_tools.report.tables import markdown
+    from georod_tools.studies.paper import run_study
+    from georod_tools.studies.paper_report import case_row, write_markdown, write_outputs
+    from georod_tools.studies.paper_setting import apply, setting_text
+
+    out.mkdir(parents=True, exist_ok=True)
+    st = apply(st0, setting, out / "scene")  # type: ignore[arg-type]
+    print(f"== {setting.name}: {setting_text(setting)}")  # type: ignore[attr-defined]
     rep = run_study(st, args.workers, not args.no_progress, parts)
-    files = write_outputs(st, rep, record.folder)
+    files = write_outputs(st, rep, out)
     rows = [case_row(c, r) for c, r in rep.cases]
     if rows:
-        print(
-            markdown(
-                rows, ("case", "F", "Omega", "paper_class", "ours", "lyapunov_per_period", "agrees")
-            )
-        )
-    print(f"study done in {time.perf_counter() - t0:.0f} s")
-    docs = DOCS / "buckled_beam"
-    code = finish_run(record, files, args, docs)
+        cols = ("case", "F", "Omega", "paper_class", "ours", "lyapunov_per_period", "agrees")
+        print(markdown(rows, cols))
     if args.update_docs:
+        skip = out / keep_out_of_docs if keep_out_of_docs else None
+        publish([f for f in files if skip is None or skip not in f.parents], docs, out)
         write_markdown(st, docs)  # study.md from every table now in docs
-    return code
+    return files, rep.cases
+
+
+def run_sensitivity(
+    parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequence[str]
+) -> int:
+    from georod_tools import fmu_path
+    from georod_tools.studies.sensitivity import QUESTIONS, SensitivitySettings, run_study
+    from georod_tools.studies.sensitivity_report import write_outputs
+
+    questions = tuple(x.strip() for x in args.questions.split(",") if x.strip())
+    if not questions or any(q not in QUESTIONS for q in questions):
+        parser.error(f"--questions {args.questions}: choose from {','.join(QUESTIONS)}")
+    st = SensitivitySettings.make_quick() if args.quick else SensitivitySettings.full()
+    st = replace(st, questions=questions)
+    fmu = fmu_path("BuckledBeam")
+    record = start_run(
+        parser, args, argv, DEFAULT_OUT, "study sensitivity", {"settings": st}, [fmu]
+    )
+    t0 = time.perf_counter()
+    prepared, located = run_study(st, record.folder, args.workers, not args.no_progress)
+    files = write_outputs(prepared, located, record.folder, questions)
+    print((record.folder / "table_sensitivity_derivatives.md").read_text())
+    print(f"study done in {time.perf_counter() - t0:.0f} s")
+    files += sorted((record.folder / "scenes").glob("*.toml"))
+    return finish_run(record, files, args, DOCS / "buckled_beam", "*sensitivity*")
 
 
 def run_arches(

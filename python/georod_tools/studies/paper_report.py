@@ -14,7 +14,15 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from georod_tools.analysis.case import CaseResult
-from georod_tools.report.figures import plot_case, plot_sweep, plt, poincare_axes, save, shrink_png
+from georod_tools.report.figures import (
+    plot_case,
+    plot_sweep,
+    plt,
+    poincare_axes,
+    save,
+    shrink_png,
+    sweep_figure,
+)
 from georod_tools.report.tables import markdown, write_csv, write_text
 from georod_tools.studies.paper import Check, StudyReport, StudySettings, agreement, spread, wells
 from georod_tools.studies.paper_cases import SWEPT, WINDOWS, PaperCase
@@ -222,6 +230,8 @@ def write_outputs(st: StudySettings, rep: StudyReport, out: Path) -> list[Path]:
             write_csv(win, out / "windows.csv"),
             write_text(markdown(win, WINDOW_COLUMNS), out / "table_windows.md"),
         ]
+    if rep.zooms:
+        files += write_zooms(rep.zooms, [c for c, _ in rep.cases] or list(st.cases), out)
     files.append(write_markdown(st, out))
     return files
 
@@ -273,3 +283,37 @@ def write_markdown(st: StudySettings, out: Path) -> Path:
         if (out / name).exists():
             text += [f"## {title}", "", (out / name).read_text(), ""]
     return write_text("\n".join(text), out / "study.md")
+
+
+def write_zooms(
+    zooms: dict[str, list[CaseResult]], cases: Sequence[PaperCase], out: Path
+) -> list[Path]:
+    """``zoom_<case>.png`` (bifurcation diagram, the panel's value dashed) and zooms.csv."""
+    by_name = {c.name: c for c in cases}
+    files, rows = [], []
+    for name, results in zooms.items():
+        case = by_name[name]
+        param = "F" if case.figure == 2 else "Omega"
+        threshold = results[0].config.classify_settings.chaos_threshold
+        fig = sweep_figure(param, results, threshold)
+        for ax in fig.axes:
+            ax.axvline(getattr(case, param), color="tab:green", ls="--", lw=1.0)
+        fig.axes[0].set_title(
+            f"{name}: paper {case.paper_label} at {param} = {getattr(case, param):g} (dashed); "
+            f"{results[0].config.elements} elements, T/{results[0].config.substeps}"
+        )
+        files.append(save(fig, out / f"zoom_{name}.png", dpi=110, shrink=True))
+        rows += [
+            {
+                "case": name,
+                "param": param,
+                "value": r.config.value(param),
+                "ours": r.classification.label,
+                "lyapunov_per_period": round(r.exponent_per_period, 4),
+                "wells": wells(r),
+            }
+            for r in results
+        ]
+    if rows:
+        files.append(write_csv(rows, out / "zooms.csv"))
+    return files
