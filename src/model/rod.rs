@@ -6,7 +6,7 @@ use super::element::{shape_functions, Element, ElementInertia, Matrix6, Vector6,
 use super::geometry::ReferenceCurve;
 use super::section::Section;
 use crate::solver::BlockTridiagonal;
-use nalgebra::Vector2;
+use nalgebra::{Vector2, Vector3};
 
 /// Dof index within a node.
 pub const U1: usize = 0;
@@ -198,27 +198,53 @@ impl Rod {
     }
 
     fn add_pattern_times(&self, x: &[f64], out: &mut [f64], scale: f64, damping: bool) {
-        // Fixed-size windows of the two nodes' dofs: no bounds check per entry (the step loop
-        // calls this twice per residual). The entries are summed in the same order as the
-        // element loop over indices did, so results are unchanged to the bit.
+        // Node by node, each entry of `out` read and written once: element by element, the
+        // entries of a shared node were stored by one element and loaded again by the next,
+        // which cost more than the arithmetic. The two elements' terms are added in the same
+        // order as element by element (left, then right), so results are the same to the bit.
         let lumped = self.lumped;
-        for (e, m) in self.inertia.iter().enumerate() {
-            let c = m.coefficients(damping) * if lumped { 3.0 * scale } else { scale };
-            let xs: &[f64; 6] = x[3 * e..3 * e + 6].try_into().expect("two nodes' dofs");
-            let o: &mut [f64; 6] = (&mut out[3 * e..3 * e + 6])
-                .try_into()
-                .expect("two nodes' dofs");
-            for k in 0..3 {
-                let (a, b) = (xs[k], xs[3 + k]);
-                if lumped {
-                    o[k] += c[k] * a;
-                    o[3 + k] += c[k] * b;
-                } else {
-                    o[k] += c[k] * (2.0 * a + b);
-                    o[3 + k] += c[k] * (a + 2.0 * b);
-                }
+        let factor = if lumped { 3.0 * scale } else { scale };
+        let coefficients = |m: &ElementInertia| m.coefficients(damping) * factor;
+        let node = |i: usize| Vector3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
+        // The element's term at its first node (`at`) and at its second node.
+        let first = |c: &Vector3<f64>, at: &Vector3<f64>, other: &Vector3<f64>| {
+            if lumped {
+                c.component_mul(at)
+            } else {
+                c.component_mul(&(2.0 * at + other))
             }
+        };
+        let second = |c: &Vector3<f64>, other: &Vector3<f64>, at: &Vector3<f64>| {
+            if lumped {
+                c.component_mul(at)
+            } else {
+                c.component_mul(&(other + 2.0 * at))
+            }
+        };
+        let add = |out: &mut [f64], i: usize, terms: &[Vector3<f64>]| {
+            for k in 0..3 {
+                let mut v = out[3 * i + k];
+                for t in terms {
+                    v += t[k];
+                }
+                out[3 * i + k] = v;
+            }
+        };
+        let n = self.inertia.len();
+        let mut c_left = coefficients(&self.inertia[0]);
+        let (mut before, mut here) = (node(0), node(1));
+        add(out, 0, &[first(&c_left, &before, &here)]);
+        for (i, m) in self.inertia.iter().enumerate().skip(1) {
+            let c_right = coefficients(m);
+            let after = node(i + 1);
+            let terms = [
+                second(&c_left, &before, &here),
+                first(&c_right, &here, &after),
+            ];
+            add(out, i, &terms);
+            (c_left, before, here) = (c_right, here, after);
         }
+        add(out, n, &[second(&c_left, &before, &here)]);
     }
 
     /// `out += scale * M x`.
