@@ -230,6 +230,16 @@ def start_forcing(inst: Instance, cfg: CaseConfig) -> int:
     return cfg.prelude.periods
 
 
+def through_transient(inst: Instance, cfg: CaseConfig) -> int:
+    """Runs the prelude, switches the forcing on and steps through the transient periods, one
+    step per period; returns the index of the first sampled period."""
+    T = cfg.period
+    first = start_forcing(inst, cfg)
+    for k in range(first, first + cfg.transient_periods):
+        inst.step(k * T, T)
+    return first + cfg.transient_periods
+
+
 def sample(inst: Instance, cfg: CaseConfig, first: int, dense_from: int) -> Trajectory:
     """The sampled periods from period `first`: one step per period, ``T / m`` steps from
     period `dense_from` on (the dense window)."""
@@ -268,10 +278,7 @@ def run_case(config: CaseConfig) -> CaseResult:
     model = FmuModel.load(cfg.fmu)
     with lend(model, "case") as inst:
         inst.initialize(cfg.fmu_parameters())
-        first = start_forcing(inst, cfg)
-        for k in range(first, first + cfg.transient_periods):
-            inst.step(k * T, T)
-        first += cfg.transient_periods
+        first = through_transient(inst, cfg)
         last = first + cfg.sample_periods
         rec = sample(inst, cfg, first, last - max(cfg.dense_periods, 1))
         per_period = inst.get(["lyapunov_per_period[1]"])[0] if cfg.lyapunov else math.nan

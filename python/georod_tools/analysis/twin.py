@@ -42,7 +42,7 @@ from georod_tools.analysis.case import (
     CaseConfig,
     CaseResult,
     Trajectory,
-    start_forcing,
+    through_transient,
 )
 from georod_tools.analysis.classify import classify
 from georod_tools.analysis.lyapunov import TWIN, LyapunovResult, from_core, interval_stderr
@@ -213,10 +213,7 @@ def run_twin(config: CaseConfig, settings: TwinSettings | None = None) -> TwinRu
     model = FmuModel.load(cfg.fmu)
     with lend(model, "reference") as a, lend(model, "twin") as b:
         a.initialize(cfg.fmu_parameters())
-        first = start_forcing(a, cfg)
-        for k in range(first, first + cfg.transient_periods):
-            a.step(k * T, T)
-        first += cfg.transient_periods
+        first = through_transient(a, cfg)
         last = first + cfg.sample_periods
         pair = FmuTwin(a, b, cfg, first, last - max(cfg.dense_periods, 1))
         segments = restart_segments(pair, cfg.sample_periods, st)
