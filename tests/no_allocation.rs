@@ -50,8 +50,12 @@ fn input_value(sim: &Simulation, i: usize, k: usize) -> f64 {
 
 #[test]
 fn advance_does_not_allocate() {
-    for scene in common::scene_files() {
-        let kind = scene.name.clone();
+    // Every scene without and with two Lyapunov tangent vectors (advanced from t = 0).
+    for (scene, exponents) in common::scene_files()
+        .into_iter()
+        .flat_map(|s| [(Arc::clone(&s), 0.0), (s, 2.0)])
+    {
+        let kind = format!("{} (lyapunov_count = {exponents})", scene.name);
         let mut values = scene.defaults();
         if let Some(f) = scene.param_index("F") {
             if values.get(f) == 0.0 {
@@ -59,6 +63,8 @@ fn advance_does_not_allocate() {
                 scene.set(&mut values, "F", 1.0).unwrap();
             }
         }
+        scene.set(&mut values, "lyapunov_count", exponents).unwrap();
+        scene.set(&mut values, "lyapunov_start", 0.0).unwrap();
         let mut sim =
             Simulation::new(Arc::clone(&scene), values).unwrap_or_else(|e| panic!("{kind}: {e}"));
         let inputs = scene.inputs.len();
