@@ -66,9 +66,40 @@ fn motion(scheme: Scheme, dof: usize, du: f64) -> f64 {
 /// most this fraction of the correction before it: it costs about a third of a Newton
 /// correction (no tangent, no factorization) and must gain at least two decades for that.
 const CHORD_CONTRACTION: f64 = 0.01;
-/// A chord correction ends the iteration only when it passes the convergence test with this
-/// margin: the error it leaves is about its contraction rate times itself.
-const CHORD_MARGIN: f64 = 0.1;
+/// Safety factor on the estimated error left after a correction (see [`error_after`]): the
+/// estimate must pass the convergence test a hundred times over (with ten, the midpoint rule's
+/// momenta on a stiff spinning rod, tests/energy_momentum.rs, drift by 4e-10 in 300 steps
+/// instead of staying at 1e-10).
+const ESTIMATE_MARGIN: f64 = 0.01;
+
+/// The error left in the iterate after applying the correction `c` that followed the
+/// correction `previous`, for the midpoint rule's quadratically converging Newton. A converging
+/// iteration contracts its error by about `rho = c / previous` per correction (quadratic Newton:
+/// faster still), so after `c` about `rho / (1 - rho) c` is left (the geometric tail); this
+/// estimate with the margin [`ESTIMATE_MARGIN`], but never more than `c` itself (the plain
+/// test: a correction below the tolerance ends the iteration). Without a contraction
+/// (`rho >= 1`, or no previous correction) it is `c`. At the sweeps' steps this ends most steps
+/// one correction earlier than testing `c` itself, with an estimated error of 1e-17 of the
+/// increment or less, against the tolerance of 1e-10.
+fn error_after(c: f64, previous: Option<f64>) -> f64 {
+    match previous {
+        Some(p) if c < p => {
+            let rho = c / p;
+            (rho / (1.0 - rho) * c / ESTIMATE_MARGIN).min(c)
+        }
+        _ => c,
+    }
+}
+
+/// Which Jacobian a residual evaluation also assembles.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Tangent {
+    Skip,
+    /// Into `jac`, for a Newton correction.
+    Iteration,
+    /// Into `linear`, for the tangent map (see [`Midpoint::linearization`]).
+    Linearization,
+}
 
 #[derive(Clone, Debug)]
 pub struct Midpoint {
@@ -77,10 +108,16 @@ pub struct Midpoint {
     /// Reuse the last factorized Jacobian for further corrections while they contract fast
     /// (see [`Midpoint::step`]); `false` gives plain Newton, one factorization per correction.
     pub reuse_factorization: bool,
-    /// Leave `jac` factored at the converged step (see [`Midpoint::linearization`]): for the
-    /// tangent map of Lyapunov exponents. Does not change the step's result.
+    /// Leave the Jacobian factored at the converged step (see [`Midpoint::linearization`]):
+    /// for the tangent map of Lyapunov exponents. Does not change the step's result.
     pub linearize: bool,
+    /// The Jacobian of the Newton corrections (and of the chord corrections that reuse it).
     jac: BlockTridiagonal,
+    /// With `linearize`: the Jacobian at the iterate of the last chord correction, assembled
+    /// with its residual; the linearization when the iteration ends on a chord correction.
+    linear: BlockTridiagonal,
+    /// Whether the linearization is `jac` (the iteration ended on a Newton correction).
+    linear_in_jac: bool,
     /// `2/dt^2 M + C/dt` for `dynamic_dt`: the constant part of the Jacobian.
     dynamic_part: BlockTridiagonal,
     dynamic_dt: f64,
@@ -104,6 +141,8 @@ impl Midpoint {
             reuse_factorization: true,
             linearize: false,
             jac: BlockTridiagonal::new(rod.nodes()),
+            linear: BlockTridiagonal::new(rod.nodes()),
+            linear_in_jac: true,
             dynamic_part: BlockTridiagonal::new(rod.nodes()),
             dynamic_dt: f64::NAN,
             du: vec![0.0; n],
@@ -146,12 +185,12 @@ impl Midpoint {
     /// triangular sweeps, no tangent and no factorization). The chord correction is applied when
     /// it is at most [`CHORD_CONTRACTION`] of the correction before it (and the factorization is
     /// reused again); otherwise it is dropped and a Newton correction is computed at the same
-    /// iterate. A chord correction ends the iteration when it passes the convergence test ten
-    /// times over ([`CHORD_MARGIN`]): a chord iteration converges linearly, and the error it
-    /// leaves is about its contraction rate times the correction. Right after a Newton
-    /// correction `c` the Jacobian is off by `O(c)`, so the chord correction is the Newton
-    /// correction up to `O(c^2)`: at small steps one Newton and one chord correction per step
-    /// are typical, against two Newton corrections.
+    /// iterate. Right after a Newton correction `c` the Jacobian is off by `O(c)`, so the chord
+    /// correction is the Newton correction up to `O(c^2)`. The iteration ends when the error
+    /// left after a correction passes the convergence test: for the midpoint rule estimated from
+    /// the contraction of the corrections ([`error_after`]), so at small steps one Newton and
+    /// one chord correction are typical (measured: BuckledBeam, T/180, two corrections per
+    /// step where testing the last correction itself took three).
     pub fn step(
         &mut self,
         rod: &Rod,
@@ -189,52 +228,71 @@ impl Midpoint {
             *m = -2.0 / dt * v;
         }
         let mut stats = NewtonStats::default();
-        // The last accepted correction, if the current factorization may be reused.
-        let mut reusable: Option<f64> = None;
+        // The last correction applied, and whether the current factorization may be reused.
+        let mut previous: Option<f64> = None;
+        let mut reusable = false;
         // Whether the iteration ended on a Newton correction (the factorization is then at
-        // the converged step, to the solver's tolerance) rather than a chord correction.
+        // the iterate before the last correction, the converged step to the solver's
+        // tolerance) rather than a chord correction.
         let ended_on_newton;
         loop {
-            if let Some(previous) = reusable {
-                self.residual(rod, loads, state, t_mid, dt, false);
+            if let (true, Some(last)) = (reusable, previous) {
+                // With `linearize`, the Jacobian at this iterate too (the same residual bits).
+                let tangent = if self.linearize {
+                    Tangent::Linearization
+                } else {
+                    Tangent::Skip
+                };
+                self.residual(rod, loads, state, t_mid, dt, tangent);
                 let residual_norm = chord_correction(rod, &self.jac, &mut self.residual).ok_or(
                     NewtonFailure::NonFinite {
                         iteration: stats.iterations,
                     },
                 )?;
                 let chord = inf_norm(&self.residual);
-                let converged = self
-                    .settings
-                    .converged(chord / CHORD_MARGIN, self.increment_after_update());
-                if chord <= CHORD_CONTRACTION * previous {
+                if chord <= CHORD_CONTRACTION * last {
+                    let converged = self.settings.converged(
+                        self.error_after(chord, previous, true),
+                        self.increment_after_update(),
+                    );
                     self.apply_correction();
                     stats.record(residual_norm, chord);
                     if converged {
                         ended_on_newton = false;
                         break;
                     }
-                    reusable = Some(chord);
+                    previous = Some(chord);
                     self.check_iteration_limit(&stats, chord)?;
                     continue;
                 }
             }
-            self.residual(rod, loads, state, t_mid, dt, true);
+            self.residual(rod, loads, state, t_mid, dt, Tangent::Iteration);
             let (residual_norm, correction) =
                 newton_correction(rod, &mut self.jac, &mut self.residual, stats.iterations)?;
             self.apply_correction();
             stats.record(residual_norm, correction);
             stats.factorizations += 1;
-            if self.settings.converged(correction, inf_norm(&self.du)) {
+            if self.settings.converged(
+                self.error_after(correction, previous, false),
+                inf_norm(&self.du),
+            ) {
                 ended_on_newton = true;
                 break;
             }
             self.check_iteration_limit(&stats, correction)?;
-            reusable = self.reuse_factorization.then_some(correction);
+            previous = Some(correction);
+            reusable = self.reuse_factorization;
         }
         self.update_held_rows();
-        if self.linearize && !ended_on_newton {
-            self.factor_at_converged_step(rod, state)?;
-            stats.factorizations += 1;
+        if self.linearize {
+            // The Jacobian at the iterate before the last correction, which passed the
+            // convergence test: the converged step's to the solver's tolerance.
+            self.linear_in_jac = ended_on_newton;
+            if !ended_on_newton {
+                self.linear.constrain(&rod.fixed);
+                self.linear.factor()?;
+                stats.factorizations += 1;
+            }
         }
         self.u_mid.copy_from_slice(&self.du);
         let dofs = state.u.iter_mut().zip(state.v.iter_mut()).zip(&self.du);
@@ -243,6 +301,19 @@ impl Midpoint {
             *v = 2.0 * motion(self.scheme, i, *d) / dt - *v;
         }
         Ok(stats)
+    }
+
+    /// The error left after the correction `c` (a chord correction if `chord`), for the
+    /// convergence test. The midpoint rule: estimated from the contraction ([`error_after`]).
+    /// The energy-momentum scheme iterates with the midpoint Jacobian, so its Newton converges
+    /// only linearly, and its point is an energy balance to round-off: there the correction
+    /// itself must pass (a chord correction ten times over), which leaves errors at round-off.
+    fn error_after(&self, c: f64, previous: Option<f64>, chord: bool) -> f64 {
+        match (self.scheme, chord) {
+            (Scheme::Midpoint, _) => error_after(c, previous),
+            (Scheme::EnergyMomentum, true) => c / ESTIMATE_MARGIN,
+            (Scheme::EnergyMomentum, false) => c,
+        }
     }
 
     fn check_iteration_limit(
@@ -259,36 +330,20 @@ impl Midpoint {
         Ok(())
     }
 
-    /// The Jacobian `2/dt^2 M + C/dt + K_T/2` of the last step, factored at its converged
-    /// increment (to the solver's tolerance) when [`Midpoint::linearize`] is set: what the
-    /// tangent map of the step needs ([`super::tangent`]). Held dofs have identity rows.
+    /// The Jacobian `2/dt^2 M + C/dt + K_T/2` of the last step, factored, when
+    /// [`Midpoint::linearize`] is set: what the tangent map of the step needs
+    /// ([`super::tangent`]). It is taken at the iterate before the last correction, which
+    /// passed the convergence test (typically 1e-9 of the increment or less away from the
+    /// converged step; the Jacobian before the last Newton correction, 1e-2 away, would put the
+    /// exponent of the buckled beam's chaotic orbit at T/64 off by 1e-3 per period, as much as
+    /// a periodic orbit's whole exponent). Held dofs have identity rows.
     pub fn linearization(&self) -> &BlockTridiagonal {
         debug_assert!(self.linearize, "linearization without Midpoint::linearize");
-        &self.jac
-    }
-
-    /// Factors the midpoint rule's Jacobian at the converged `du` (the iteration ended on a
-    /// chord correction, whose factorization belongs to an earlier iterate; with the stale one
-    /// the exponent of the buckled beam's chaotic orbit at T/64 is off by 1e-3 per period, as
-    /// much as a periodic orbit's whole exponent). Overwrites `residual` and `u_mid`.
-    fn factor_at_converged_step(
-        &mut self,
-        rod: &Rod,
-        state: &DynamicState,
-    ) -> Result<(), NewtonFailure> {
-        debug_assert_eq!(
-            self.scheme,
-            Scheme::Midpoint,
-            "the midpoint rule's tangent map"
-        );
-        for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
-            *um = u + 0.5 * d;
+        if self.linear_in_jac {
+            &self.jac
+        } else {
+            &self.linear
         }
-        self.jac.copy_from(&self.dynamic_part);
-        rod.internal_force_and_tangent(&self.u_mid, &mut self.residual, &mut self.jac, 0.5);
-        self.jac.constrain(&rod.fixed);
-        self.jac.factor()?;
-        Ok(())
     }
 
     /// `|du + correction|_inf` with the correction in `residual`.
@@ -302,8 +357,8 @@ impl Midpoint {
         }
     }
 
-    /// The residual `R(du)` at the current `du` into `residual` and, with `tangent`, the
-    /// Jacobian into `jac` (constraints not yet applied).
+    /// The residual `R(du)` at the current `du` into `residual` and the Jacobian where
+    /// `tangent` says (constraints not yet applied).
     fn residual(
         &mut self,
         rod: &Rod,
@@ -311,23 +366,23 @@ impl Midpoint {
         state: &DynamicState,
         t_mid: f64,
         dt: f64,
-        tangent: bool,
+        tangent: Tangent,
     ) {
-        if tangent {
-            self.jac.copy_from(&self.dynamic_part);
+        let mut jac = match tangent {
+            Tangent::Skip => None,
+            Tangent::Iteration => Some(&mut self.jac),
+            Tangent::Linearization => Some(&mut self.linear),
+        };
+        if let Some(j) = jac.as_deref_mut() {
+            j.copy_from(&self.dynamic_part);
         }
         match self.scheme {
             Scheme::Midpoint => {
                 for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
                     *um = u + 0.5 * d;
                 }
-                if tangent {
-                    rod.internal_force_and_tangent(
-                        &self.u_mid,
-                        &mut self.residual,
-                        &mut self.jac,
-                        0.5,
-                    );
+                if let Some(jac) = jac {
+                    rod.internal_force_and_tangent(&self.u_mid, &mut self.residual, jac, 0.5);
                 } else {
                     rod.internal_force(&self.u_mid, &mut self.residual);
                 }
@@ -337,12 +392,12 @@ impl Midpoint {
                 for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
                     *um = u + d;
                 }
-                if tangent {
+                if let Some(jac) = jac {
                     rod.discrete_gradient_and_tangent(
                         &state.u,
                         &self.u_mid,
                         &mut self.residual,
-                        &mut self.jac,
+                        jac,
                         0.5,
                     );
                 } else {

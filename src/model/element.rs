@@ -80,7 +80,7 @@ impl Element {
             length,
             alpha,
             tangent: alpha.map(|a| {
-                let (s, c) = a.sin_cos();
+                let (s, c) = libm::sincos(a);
                 (c, s)
             }),
         }
@@ -110,7 +110,7 @@ impl Element {
         };
         for (g, &(na, nb)) in SHAPE_AT_GAUSS.iter().enumerate() {
             let w = na * ue[2] + nb * ue[5];
-            let (sin_w, cos_w) = w.sin_cos();
+            let (sin_w, cos_w) = libm::sincos(w);
             let (cos_a, sin_a) = self.tangent[g];
             let cos_aw = cos_a * cos_w - sin_a * sin_w;
             let sin_aw = sin_a * cos_w + cos_a * sin_w;
@@ -270,8 +270,8 @@ impl Element {
             };
             let (xa1, xa2, theta_a) = stretch(ua);
             let (xb1, xb2, theta_b) = stretch(ub);
-            let (sa, ca) = theta_a.sin_cos();
-            let (sb, cb) = theta_b.sin_cos();
+            let (sa, ca) = libm::sincos(theta_a);
+            let (sb, cb) = libm::sincos(theta_b);
             b_sum += half_l
                 * Vector2::new(
                     xa1 * ca + xa2 * sa + xb1 * cb + xb2 * sb - 2.0,
@@ -321,7 +321,7 @@ impl Element {
 /// Cayley increment of a rotation increment: `tau = 2 tan(Dw / 2)` (the rotation that the
 /// energy-momentum scheme's angular velocity `tau / dt` describes; `tau = Dw + O(Dw^3)`).
 pub fn cayley(dw: f64) -> f64 {
-    2.0 * (0.5 * dw).tan()
+    2.0 * libm::tan(0.5 * dw)
 }
 
 /// Mass and damping coefficients of one element: the consistent pattern (two Gauss points

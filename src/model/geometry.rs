@@ -75,8 +75,8 @@ impl ReferenceCurve {
             } => {
                 let a = half_angle - s / radius;
                 Vector2::new(
-                    0.5 * span - radius * a.sin(),
-                    rise - radius + radius * a.cos(),
+                    0.5 * span - radius * libm::sin(a),
+                    rise - radius + radius * libm::cos(a),
                 )
             }
             ReferenceCurve::TwoBar { span, rise } => {

@@ -154,7 +154,7 @@ impl LoadSet {
 
     /// `cos(Omega t)` times the amplitude of harmonic group `g`.
     pub fn excitation(&self, g: usize, t: f64) -> f64 {
-        self.harmonic[g].1 * (self.frequency * t).cos()
+        self.harmonic[g].1 * libm::cos(self.frequency * t)
     }
 
     /// `out += scale * f_ext(t)`.
