@@ -7,12 +7,14 @@ input (`data/before_scene_files/*.csv`, written by the same driving loop as belo
 This proves the refactor kept the numbers; it is not evidence of correctness (the physics tests
 check the model against closed forms).
 
-Tolerances: the arches take exactly the floating-point operations they took before, so they must
-agree bit for bit. The buckled beam reaches its initial buckled state by a different path now
-(load stepping with an imperfection instead of a closed-form guess); both Newton solves stop at
-round-off of the same equilibrium, and 200 steps (11 forcing periods) amplify that difference
-to the 1e-13 level measured; 1e-10 of each output's range leaves room for compiler and libm
-differences while catching any change of the model (which shows at 1e-4 and above).
+Tolerance: 1e-9 of each output's range, for every case. The recording predates two changes of
+the solver's round-off: Newton now stops when the error left after its last correction is
+estimated a hundred times below its tolerance (1e-12 of the step's increment or less) instead of
+taking one more correction, and the model's sines and cosines come from Rust's libm instead of
+the system's. Over the 200 recorded steps (11 forcing periods of the beam) these show as
+differences of at most 3e-10 of an output's range (BuckledBeam_default, E_strain), 1e-13 for the
+energy-momentum cases (which still iterate to round-off); a change of the model shows at 1e-4
+and above.
 """
 
 from __future__ import annotations
@@ -60,9 +62,6 @@ def test_paper_scenes_keep_their_trajectories(fmus: dict[str, FmuInfo], path: Pa
     now = np.array(rows)
     for j, name in enumerate(NAMES):
         ref = before[name]
-        if scene != "BuckledBeam":
-            assert np.array_equal(now[:, j], ref), f"{name}: not bit-identical"
-        else:
-            scale = float(np.ptp(ref)) or 1.0
-            worst = float(np.max(np.abs(now[:, j] - ref))) / scale
-            assert worst <= 1e-10, f"{name}: differs by {worst:.2e} of its range"
+        scale = float(np.ptp(ref)) or 1.0
+        worst = float(np.max(np.abs(now[:, j] - ref))) / scale
+        assert worst <= 1e-9, f"{name}: differs by {worst:.2e} of its range"
