@@ -106,7 +106,8 @@ fn resource_locations() {
         format!("file://localhost{path}"),
         format!("{uri}/"),
     ];
-    let empty = std::env::temp_dir().join(format!("georod fmi_api empty {}", std::process::id()));
+    let empty = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("georod fmi_api empty {}", std::process::id()));
     std::fs::create_dir_all(&empty).unwrap();
     let bad = [
         ("http://h/x".to_string(), "not a file: URI"),
@@ -156,7 +157,8 @@ fn resource_locations() {
 #[test]
 fn altered_resources_are_refused() {
     let (guid, uri) = resources(BEAM);
-    let dir = std::env::temp_dir().join(format!("georod fmi_api altered {}", std::process::id()));
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("georod fmi_api altered {}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let original = std::fs::read_to_string(
         uri.to_str()

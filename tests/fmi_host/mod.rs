@@ -72,7 +72,8 @@ pub mod vr {
 pub fn resources(scene: &str) -> (CString, CString) {
     static MADE: OnceLock<Vec<(String, String, String)>> = OnceLock::new();
     let made = MADE.get_or_init(|| {
-        let root = std::env::temp_dir().join(format!("georod fmi_api {}", std::process::id()));
+        let root = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("georod fmi_api {}", std::process::id()));
         scene_files()
             .into_iter()
             .map(|(name, source)| {
