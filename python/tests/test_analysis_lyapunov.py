@@ -140,13 +140,16 @@ def test_core_exponents_of_one_linear_mode(bars: dict[str, Path], bar: str, damp
 
 
 @pytest.mark.usefixtures("fmu_paths")
-@pytest.mark.parametrize("F", [1.0, 2.0])
+@pytest.mark.parametrize("F", [1.2, 2.0])
 def test_core_exponent_agrees_with_the_two_instance_twin(F: float) -> None:
     """The paper's BuckledBeam at Omega = 3500 (10 elements, T/64 sub-steps, 50 transient + 400
-    sampled periods): F = 1.0 chaotic, F = 2.0 a period-1 orbit. The twin's reference computes the
-    core's exponent too, so both are compared over exactly the periods the twin counted. (Not
-    F = 1.5: there the chaos is a transient that settles on a periodic orbit after 100 to 400
-    periods, depending on round-off, so the averaged exponent says when, not what.)
+    sampled periods): F = 1.2 chaotic, F = 2.0 a period-1 orbit. The twin's reference computes the
+    core's exponent too, so both are compared over exactly the periods the twin counted. The
+    chaotic window must be clearly chaotic, exponent > 0.2 per period (4x the chaos threshold):
+    not tighter, because where the chaos is intermittent or transient, round-off decides how long
+    the near-periodic phases last, and they lower the average (F = 1.0: 0.28 or 0.64 per period,
+    F = 1.5: 0.22 or 0.58, under two solver variants that differ at round-off; F = 1.2: 0.75 and
+    0.86).
 
     Chaotic: the twin's segments grow like the tangent vector up to the change of the observed
     fraction of the separation at their two ends, an O(1) term per segment of ~10 periods that
@@ -166,8 +169,8 @@ def test_core_exponent_agrees_with_the_two_instance_twin(F: float) -> None:
     t, c = twin.result.exponent_per_period, twin.core_on_segments
     whole = core.exponent_per_period
     print(f"F = {F}: twin {t:.4f}, core on the same periods {c:.4f}, core {whole:.4f}")
-    if F == 1.0:
-        assert c > 0.3 and abs(t - c) < 0.1
+    if F == 1.2:
+        assert c > 0.2 and abs(t - c) < 0.1
         assert core.classification.kind == twin.result.classification.kind == "chaotic"
     else:
         assert abs(c) < 0.05 and abs(t - c) < 0.01
