@@ -339,6 +339,11 @@ impl Midpoint {
     /// a periodic orbit's whole exponent). Held dofs have identity rows.
     pub fn linearization(&self) -> &BlockTridiagonal {
         debug_assert!(self.linearize, "linearization without Midpoint::linearize");
+        debug_assert_eq!(
+            self.scheme,
+            Scheme::Midpoint,
+            "the tangent map is the midpoint rule's"
+        );
         if self.linear_in_jac {
             &self.jac
         } else {
