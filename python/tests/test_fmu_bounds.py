@@ -26,9 +26,7 @@ from fmpy.fmi1 import FMICallException
 from helpers import FMU_DIR, REPO, LogCapture
 
 ERROR, DISCARD = 3, 2
-NAMES = tuple(
-    sorted(p.stem for d in ("scenes", "examples") for p in (REPO / d).glob("*.toml"))
-)
+NAMES = tuple(sorted(p.stem for d in ("scenes", "examples") for p in (REPO / d).glob("*.toml")))
 #: The smallest positive normal number, the declared minimum of every positive quantity.
 TINY = 2.2250738585072014e-308
 #: Declared bounds at which a scene may be unrepresentable in double precision, so that its
@@ -114,8 +112,11 @@ def new_slave_for(md: fmpy.model_description.ModelDescription, unzipdir: str):  
 def finite(slave, outputs, where: str) -> None:  # noqa: ANN001
     reals = [v.valueReference for v in outputs if v.type == "Real"]
     values = slave.getReal(reals)
-    bad = [v.name for v, x in zip((v for v in outputs if v.type == "Real"), values, strict=True)
-           if not math.isfinite(x)]
+    bad = [
+        v.name
+        for v, x in zip((v for v in outputs if v.type == "Real"), values, strict=True)
+        if not math.isfinite(x)
+    ]
     assert not bad, f"{where}: non-finite outputs {bad[:5]}"
 
 
@@ -158,4 +159,3 @@ def test_extreme_combinations_keep_outputs_finite(fmu_paths: dict[str, Path], na
         check_run(path, values)
         ran += 1
     assert ran > 0
-

@@ -118,7 +118,7 @@ def test_beam_on_base_follows_its_inputs(examples: dict[str, FmuInfo]) -> None:
     # 1 %: the mesh's bending (20 elements) is exact to 1e-3; the start's ringing has decayed
     # by exp(-50).
     assert math.isclose(steps * h * speed - w_mid, sag, rel_tol=1e-2), (w_mid, sag)
-    assert math.isclose(left + right, d * length * speed, rel_tol=1e-2), (left + right)
+    assert math.isclose(left + right, d * length * speed, rel_tol=1e-2), left + right
 
 
 def test_three_span_mesh_check_names_the_counts_that_work(examples: dict[str, FmuInfo]) -> None:
@@ -173,7 +173,9 @@ def test_altered_scene_file_is_refused(examples: dict[str, FmuInfo], tmp_path: P
 
     log = LogCapture()
     slave = FMU2Slave(
-        guid=info.md.guid, unzipDirectory=str(altered), modelIdentifier="Cantilever",
+        guid=info.md.guid,
+        unzipDirectory=str(altered),
+        modelIdentifier="Cantilever",
         instanceName="altered",
     )
     with pytest.raises(Exception):  # noqa: B017 - fmpy raises on a NULL component
