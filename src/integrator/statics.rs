@@ -102,8 +102,13 @@ impl StaticSolver {
         Ok(stats)
     }
 
-    /// The tangent at the last solution, factored: its negative pivot count tells stability.
-    pub fn factored_tangent(&self) -> &BlockTridiagonal {
-        &self.jac
+    /// The number of negative eigenvalues of the tangent at `u` (constraints removed): zero
+    /// for a stable equilibrium. `None` if the tangent is singular to working precision.
+    pub fn negative_eigenvalues(&mut self, rod: &Rod, u: &[f64]) -> Option<usize> {
+        self.jac.set_zero();
+        rod.internal_force_and_tangent(u, &mut self.residual, &mut self.jac, 1.0);
+        self.jac.constrain(&rod.fixed);
+        self.jac.factor_with_inertia().ok()?;
+        Some(self.jac.negative_eigenvalues())
     }
 }

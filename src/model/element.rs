@@ -11,7 +11,7 @@
 //! `b` couple the translations only with the rotations, so the generic products
 //! `B^T C B` and `map^T H map` reduce to a few dozen multiply-adds.
 use super::section::Section;
-use nalgebra::{Matrix2x3, SMatrix, SVector, Vector2, Vector3};
+use nalgebra::{Matrix2x3, Matrix3, SMatrix, SVector, Vector2, Vector3};
 
 pub type Vector6 = SVector<f64, 6>;
 pub type Matrix6 = SMatrix<f64, 6, 6>;
@@ -172,65 +172,105 @@ impl Element {
         self.force_from(section, ue, &self.strain_integrals(ue))
     }
 
-    /// Internal force and consistent (symmetric) tangent.
+    /// Internal force and consistent (symmetric) tangent as a 6x6 matrix.
     pub fn force_and_tangent(&self, section: &Section, ue: &Vector6) -> (Vector6, Matrix6) {
         let mut f = Vector6::zeros();
-        let mut k = Matrix6::zeros();
+        let mut k = ElementTangent::default();
         self.force_and_tangent_into(section, ue, &mut f, &mut k);
-        (f, k)
+        (f, k.to_matrix())
     }
 
-    /// [`force_and_tangent`](Self::force_and_tangent) written into `f` and `k` (overwritten).
+    /// Internal force and consistent tangent, the tangent as its node blocks (what the
+    /// assembly adds), written into `f` and `k` (overwritten; returning them would copy them). Written out block by block: the translation rows of `B` at the two
+    /// nodes are opposite (`-t`, `t`), so the material part `B^T (C / l) B` has one 2x2
+    /// translation block `T` (`+T` on the diagonal blocks, `-T` off them), one 2-vector per
+    /// rotation coupling it with the translations, and three rotation entries; the geometric
+    /// part `S1 b1'' + S2 b2''` adds to the couplings and the rotation entries only.
     pub fn force_and_tangent_into(
         &self,
         section: &Section,
         ue: &Vector6,
         f: &mut Vector6,
-        k: &mut Matrix6,
+        k: &mut ElementTangent,
     ) {
         let half_l = 0.5 * self.length;
         let inv_l = 1.0 / self.length;
         let si = self.strain_integrals(ue);
         *f = self.force_from(section, ue, &si);
         let s = self.forces(section, &si.b);
-        // Material part B^T (C / l) B.
-        let rows = si.rows();
+        let (p1, p2, r) = (si.p1, si.p2, si.r);
         let (ka, kg) = (section.ea * inv_l, section.ga * inv_l);
-        for j in 0..6 {
-            let (b0j, b1j) = (ka * rows[0][j], kg * rows[1][j]);
-            for i in 0..6 {
-                k[(i, j)] = rows[0][i] * b0j + rows[1][i] * b1j;
-            }
-        }
-        // Geometric part S1 b1'' + S2 b2'': per Gauss point, with respect to (u1', u2', w),
-        // [[0, 0, a], [0, 0, c], [a, c, ww]]; u1', u2' couple only with the rotations.
-        let (mut a_rot, mut c_rot, mut w_rot) = ([0.0; 2], [0.0; 2], [0.0; 3]);
-        for (gp, &(na, nb)) in si.gauss.iter().zip(&SHAPE_AT_GAUSS) {
-            let a = -s[0] * gp.sin_aw - s[1] * gp.cos_aw;
-            let c = s[0] * gp.cos_aw - s[1] * gp.sin_aw;
-            let ww = half_l * (-s[0] * (1.0 + gp.e1) - s[1] * gp.e2);
-            // half_l * (1/l) = 1/2 for the u' rows.
-            a_rot[0] += 0.5 * a * na;
-            a_rot[1] += 0.5 * a * nb;
-            c_rot[0] += 0.5 * c * na;
-            c_rot[1] += 0.5 * c * nb;
-            w_rot[0] += ww * na * na;
-            w_rot[1] += ww * na * nb;
-            w_rot[2] += ww * nb * nb;
-        }
-        for (col, g) in [(2usize, 0usize), (5, 1)] {
-            for (row, sign) in [(0usize, -1.0), (3, 1.0)] {
-                k[(row, col)] += sign * a_rot[g];
-                k[(col, row)] += sign * a_rot[g];
-                k[(row + 1, col)] += sign * c_rot[g];
-                k[(col, row + 1)] += sign * c_rot[g];
-            }
-        }
+        // Material part. `t = (t0, t1)`, the translation columns of B at the second node:
+        // t0 = (p1, p2) (row b1), t1 = (-p2, p1) (row b2).
+        let t00 = ka * p1 * p1 + kg * p2 * p2;
+        let t01 = (ka - kg) * p1 * p2;
+        let t11 = ka * p2 * p2 + kg * p1 * p1;
+        // Coupling of the second node's translations with rotation `x`: t0 ka r0x + t1 kg r1x.
+        let coupling = |r0: f64, r1: f64| {
+            let (c, g) = (ka * r0, kg * r1);
+            [p1 * c - p2 * g, p2 * c + p1 * g]
+        };
+        let mut h = [coupling(r[0], r[2]), coupling(r[1], r[3])];
         let kb = section.ei * inv_l;
-        k[(2, 2)] += w_rot[0] + kb;
-        k[(5, 5)] += w_rot[2] + kb;
-        k[(2, 5)] += w_rot[1] - kb;
-        k[(5, 2)] += w_rot[1] - kb;
+        let mut rot = [
+            ka * r[0] * r[0] + kg * r[2] * r[2] + kb,
+            ka * r[0] * r[1] + kg * r[2] * r[3] - kb,
+            ka * r[1] * r[1] + kg * r[3] * r[3] + kb,
+        ];
+        // Geometric part per Gauss point, with respect to (u1', u2', w):
+        // [[0, 0, a], [0, 0, c], [a, c, ww]]; u' carries the weight half_l / l = 1/2.
+        for (gp, &(na, nb)) in si.gauss.iter().zip(&SHAPE_AT_GAUSS) {
+            let a = 0.5 * (-s[0] * gp.sin_aw - s[1] * gp.cos_aw);
+            let c = 0.5 * (s[0] * gp.cos_aw - s[1] * gp.sin_aw);
+            let ww = half_l * (-s[0] * (1.0 + gp.e1) - s[1] * gp.e2);
+            h[0][0] += a * na;
+            h[0][1] += c * na;
+            h[1][0] += a * nb;
+            h[1][1] += c * nb;
+            rot[0] += ww * na * na;
+            rot[1] += ww * na * nb;
+            rot[2] += ww * nb * nb;
+        }
+        let [ha, hb] = h;
+        #[rustfmt::skip]
+        let tangent = ElementTangent {
+            aa: Matrix3::new(
+                t00, t01, -ha[0],
+                t01, t11, -ha[1],
+                -ha[0], -ha[1], rot[0],
+            ),
+            ab: Matrix3::new(
+                -t00, -t01, -hb[0],
+                -t01, -t11, -hb[1],
+                ha[0], ha[1], rot[1],
+            ),
+            bb: Matrix3::new(
+                t00, t01, hb[0],
+                t01, t11, hb[1],
+                hb[0], hb[1], rot[2],
+            ),
+        };
+        *k = tangent;
+    }
+}
+
+/// The symmetric 6x6 tangent of an element by node blocks: `[[aa, ab], [ab^T, bb]]`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ElementTangent {
+    pub aa: Matrix3<f64>,
+    pub ab: Matrix3<f64>,
+    pub bb: Matrix3<f64>,
+}
+
+impl ElementTangent {
+    pub fn to_matrix(&self) -> Matrix6 {
+        let mut k = Matrix6::zeros();
+        k.fixed_view_mut::<3, 3>(0, 0).copy_from(&self.aa);
+        k.fixed_view_mut::<3, 3>(0, 3).copy_from(&self.ab);
+        k.fixed_view_mut::<3, 3>(3, 0)
+            .copy_from(&self.ab.transpose());
+        k.fixed_view_mut::<3, 3>(3, 3).copy_from(&self.bb);
+        k
     }
 }
 

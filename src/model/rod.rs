@@ -2,7 +2,9 @@
 //! matrices (internal force, tangent, mass, damping, loads). Global dof `3 i + k` is `u1`, `u2`,
 //! `w` (k = 0, 1, 2) of node `i`; element `e` joins nodes `e` and `e + 1`, so its six dofs are
 //! contiguous and the matrices are block tridiagonal.
-use super::element::{shape_functions, Element, ElementInertia, Matrix6, Vector6, GAUSS_POINTS};
+use super::element::{
+    shape_functions, Element, ElementInertia, ElementTangent, Vector6, GAUSS_POINTS,
+};
 use super::geometry::ReferenceCurve;
 use super::section::Section;
 use crate::solver::BlockTridiagonal;
@@ -146,7 +148,7 @@ impl Rod {
         scale: f64,
     ) {
         f.fill(0.0);
-        let (mut fe, mut ke) = (Vector6::zeros(), Matrix6::zeros());
+        let (mut fe, mut ke) = (Vector6::zeros(), ElementTangent::default());
         for (e, el) in self.elements.iter().enumerate() {
             el.force_and_tangent_into(&self.section, &Self::element_dofs(u, e), &mut fe, &mut ke);
             add_element_vector(f, e, &fe);
@@ -177,7 +179,13 @@ impl Rod {
         for (e, el) in self.elements.iter().enumerate() {
             let (a, b) = (Self::element_dofs(ua, e), Self::element_dofs(ub, e));
             let fe = el.discrete_gradient(&self.section, &a, &b);
-            let (_, ke) = el.force_and_tangent(&self.section, &(0.5 * (a + b)));
+            let mut ke = ElementTangent::default();
+            el.force_and_tangent_into(
+                &self.section,
+                &(0.5 * (a + b)),
+                &mut Vector6::zeros(),
+                &mut ke,
+            );
             add_element_vector(f, e, &fe);
             jac.add_element(e, &ke, scale);
         }

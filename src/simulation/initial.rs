@@ -48,13 +48,14 @@ pub fn initial_displacements(
     let probe = setup.sensors[branch.sensor];
     let (dof, _) = scene.sensors[branch.sensor].quantity.dof();
     let sensor = |u: &[f64]| rod.interpolate(u, probe.point, dof);
-    let stable = |solver: &StaticSolver| solver.factored_tangent().negative_pivots() == 0;
-    if sensor(&u) * well > 0.0 && stable(&solver) {
+    let stable =
+        |solver: &mut StaticSolver, u: &[f64]| solver.negative_eigenvalues(rod, u) == Some(0);
+    if sensor(&u) * well > 0.0 && stable(&mut solver, &u) {
         return Ok(u);
     }
     // On the symmetric branch (the sensor exactly 0) and stable: the rod does not buckle at
     // these values, there is no other equilibrium to choose.
-    if sensor(&u) == 0.0 && stable(&solver) {
+    if sensor(&u) == 0.0 && stable(&mut solver, &u) {
         return Ok(u);
     }
     // On the other side, or on an unstable symmetric branch: trace the path again with a load
@@ -92,12 +93,12 @@ pub fn initial_displacements(
             continue;
         }
         match unload(&mut solver, rod, &mut u, &constant, &imperfection) {
-            Ok(()) if sensor(&u) * well > 0.0 && stable(&solver) => return Ok(u),
+            Ok(()) if sensor(&u) * well > 0.0 && stable(&mut solver, &u) => return Ok(u),
             Ok(()) => {
                 last =
                     format!(
                     "with an imperfection of {size:.3e} the {} equilibrium reached has {} = {:.4e}",
-                    if stable(&solver) { "stable" } else { "unstable" },
+                    if stable(&mut solver, &u) { "stable" } else { "unstable" },
                     scene.sensors[branch.sensor].name,
                     sensor(&u)
                 )

@@ -2,14 +2,20 @@
 //! factorization: O(nodes) work and no allocation after construction.
 //!
 //! Storage: `diag[i]` is block `(i, i)`, `upper[i]` block `(i, i+1)`, `lower[i]` block `(i+1, i)`.
-//! `factor` overwrites `diag` with the inverses of the Schur complements `D'_i`, `lower` with
-//! the multipliers `L_i = A_(i+1,i) D'_i^-1` and `upper` with `W_i = D'_i^-1 A_(i,i+1)`.
 //!
-//! Both sweeps run node after node, each node waiting for the one before: at a few nodes their
-//! time is the latency of that chain, not the flops. So the factorization forms the next Schur
-//! complement from the adjugate while the division by the determinant runs, and the backward
-//! sweep `x_i = D'_i^-1 y_i - W_i x_(i+1)` keeps one block product on the chain instead of two.
-use crate::model::element::Matrix6;
+//! The factorization is twisted (eliminated from both ends towards the middle block `m =
+//! nodes / 2`): the nodes above `m` are eliminated downwards, those below `m` upwards, and `m`
+//! last. Each sweep runs node after node, each node waiting for the one before, so at a few
+//! nodes its time is the latency of that chain, not the flops; from both ends there are two
+//! independent chains of half the length, which the processor runs side by side. It is the
+//! block LU of the matrix with its nodes reordered (`0, n-1, 1, n-2, ..., m`), so the pivots are
+//! Schur complements as in plain block LU and a symmetric matrix has the inertia of its pivots.
+//! `factor` overwrites `diag` with the inverses of the pivots `D'_i`; above `m`, `lower[i]` with
+//! the multiplier `A_(i+1,i) D'_i^-1` and `upper[i]` with `D'_i^-1 A_(i,i+1)`; below `m`,
+//! `upper[i]` with `A_(i,i+1) D'_(i+1)^-1` and `lower[i]` with `D'_(i+1)^-1 A_(i+1,i)`.
+//! Each pivot's next Schur complement is formed from its adjugate while the division by the
+//! determinant runs, and the backward sweeps keep one block product on their chains.
+use crate::model::element::ElementTangent;
 use nalgebra::{Matrix3, Vector3};
 use std::fmt;
 
@@ -35,6 +41,9 @@ pub struct BlockTridiagonal {
     factored: bool,
     /// Number of pivot blocks with negative determinant (after `factor`).
     negative_pivots: usize,
+    /// Number of negative eigenvalues of the pivots, when counted
+    /// ([`BlockTridiagonal::factor_with_inertia`]).
+    inertia: Option<usize>,
 }
 
 impl BlockTridiagonal {
@@ -46,6 +55,7 @@ impl BlockTridiagonal {
             lower: vec![Matrix3::zeros(); blocks - 1],
             factored: false,
             negative_pivots: 0,
+            inertia: None,
         }
     }
 
@@ -70,12 +80,12 @@ impl BlockTridiagonal {
     }
 
     /// Adds `scale * k` for the element between nodes `e` and `e + 1`.
-    pub fn add_element(&mut self, e: usize, k: &Matrix6, scale: f64) {
+    pub fn add_element(&mut self, e: usize, k: &ElementTangent, scale: f64) {
         debug_assert!(!self.factored);
-        self.diag[e] += scale * k.fixed_view::<3, 3>(0, 0);
-        self.upper[e] += scale * k.fixed_view::<3, 3>(0, 3);
-        self.lower[e] += scale * k.fixed_view::<3, 3>(3, 0);
-        self.diag[e + 1] += scale * k.fixed_view::<3, 3>(3, 3);
+        self.diag[e] += scale * k.aa;
+        self.upper[e] += scale * k.ab;
+        self.lower[e] += scale * k.ab.transpose();
+        self.diag[e + 1] += scale * k.bb;
     }
 
     /// Adds `scale * [[2 c, c], [c, 2 c]]` per dof kind (`coeffs = (c_u1, c_u2, c_w)`), the
@@ -159,58 +169,125 @@ impl BlockTridiagonal {
         (3 * first, entries)
     }
 
-    /// Block LU factorization in place, without pivoting between blocks (the Jacobians here are
-    /// symmetric and, in dynamics, mass-dominated). Fails on a pivot block that is singular to
-    /// working precision.
+    /// Block LU factorization in place (twisted: see the module documentation), without
+    /// pivoting between blocks (the Jacobians here are symmetric and, in dynamics,
+    /// mass-dominated). Fails on a pivot block that is singular to working precision.
     pub fn factor(&mut self) -> Result<(), SingularMatrix> {
+        self.inertia = None;
+        self.factor_blocks::<false>()
+    }
+
+    /// [`factor`](Self::factor) that also counts the negative eigenvalues of the (symmetric)
+    /// matrix from its pivots, for [`negative_eigenvalues`](Self::negative_eigenvalues): three
+    /// 3x3 eigenvalue problems per node, for analyses, not for time steps.
+    pub fn factor_with_inertia(&mut self) -> Result<(), SingularMatrix> {
+        self.inertia = Some(0);
+        self.factor_blocks::<true>()
+    }
+
+    /// The factorization; with `INERTIA`, counting the pivots' negative eigenvalues (a
+    /// separate instance: the time steps' factorization carries none of that code).
+    fn factor_blocks<const INERTIA: bool>(&mut self) -> Result<(), SingularMatrix> {
         debug_assert!(!self.factored);
         self.negative_pivots = 0;
         let n = self.blocks();
-        for i in 0..n {
-            let (adjugate, det) = adjugate_and_determinant(&self.diag[i]);
-            // Relative to the product of the column norms (Hadamard's bound), which is blind to
-            // how differently the dofs are scaled (a slender rod's rotation columns are orders of
-            // magnitude smaller than its translation columns). Squared: no square roots.
-            let bound: f64 = self.diag[i]
-                .column_iter()
-                .map(|c| c.norm_squared())
-                .product();
-            if !det.is_finite() || det * det <= 1e-28 * bound || !bound.is_finite() {
-                return Err(SingularMatrix { block: i });
-            }
-            if det < 0.0 {
-                self.negative_pivots += 1;
-            }
-            let inv_det = 1.0 / det;
-            self.diag[i] = adjugate * inv_det;
-            if i + 1 < n {
-                // D'_(i+1) = D_(i+1) - A_(i+1,i) adj(D'_i) A_(i,i+1) / det(D'_i): the products
-                // with the adjugate do not wait for the division.
-                let lower_adjugate = self.lower[i] * adjugate;
-                let schur = lower_adjugate * self.upper[i];
-                self.diag[i + 1] -= schur * inv_det;
-                self.lower[i] = lower_adjugate * inv_det;
-                self.upper[i] = (adjugate * self.upper[i]) * inv_det;
+        let middle = n / 2;
+        // The chain from the top has `middle` pivots, the one from the bottom `n - 1 - middle`
+        // (as many or one fewer): one loop runs both, so their latencies overlap.
+        for k in 0..middle {
+            self.eliminate_down::<INERTIA>(k)?;
+            let j = n - 1 - k;
+            if j > middle {
+                self.eliminate_up::<INERTIA>(j)?;
             }
         }
+        let (adjugate, inv_det) = self.pivot::<INERTIA>(middle)?;
+        self.diag[middle] = adjugate * inv_det;
         self.factored = true;
         Ok(())
     }
 
-    /// Solves `A x = rhs` in place (after [`factor`](Self::factor)).
+    /// The adjugate and `1 / det` of the pivot block `i`, checked and counted.
+    fn pivot<const INERTIA: bool>(&mut self, i: usize) -> Result<(Matrix3<f64>, f64), SingularMatrix> {
+        let (adjugate, det) = adjugate_and_determinant(&self.diag[i]);
+        // Relative to the product of the column norms (Hadamard's bound), which is blind to
+        // how differently the dofs are scaled (a slender rod's rotation columns are orders of
+        // magnitude smaller than its translation columns). Squared: no square roots.
+        let bound: f64 = self.diag[i]
+            .column_iter()
+            .map(|c| c.norm_squared())
+            .product();
+        if !det.is_finite() || det * det <= 1e-28 * bound || !bound.is_finite() {
+            return Err(SingularMatrix { block: i });
+        }
+        if det < 0.0 {
+            self.negative_pivots += 1;
+        }
+        if let (true, Some(negative)) = (INERTIA, self.inertia.as_mut()) {
+            // From the pivot itself: the inverse of a pivot that is singular to round-off (at a
+            // critical point) carries its other eigenvalues below its round-off.
+            let symmetric = 0.5 * (self.diag[i] + self.diag[i].transpose());
+            *negative += symmetric
+                .symmetric_eigenvalues()
+                .iter()
+                .filter(|&&l| l < 0.0)
+                .count();
+        }
+        Ok((adjugate, 1.0 / det))
+    }
+
+    /// Eliminates node `i` (above the middle) from node `i + 1`.
+    fn eliminate_down<const INERTIA: bool>(&mut self, i: usize) -> Result<(), SingularMatrix> {
+        let (adjugate, inv_det) = self.pivot::<INERTIA>(i)?;
+        self.diag[i] = adjugate * inv_det;
+        // D'_(i+1) = D_(i+1) - A_(i+1,i) adj(D'_i) A_(i,i+1) / det(D'_i): the products with the
+        // adjugate do not wait for the division.
+        let lower_adjugate = self.lower[i] * adjugate;
+        let schur = lower_adjugate * self.upper[i];
+        self.diag[i + 1] -= schur * inv_det;
+        self.lower[i] = lower_adjugate * inv_det;
+        self.upper[i] = (adjugate * self.upper[i]) * inv_det;
+        Ok(())
+    }
+
+    /// Eliminates node `j` (below the middle) from node `j - 1`.
+    fn eliminate_up<const INERTIA: bool>(&mut self, j: usize) -> Result<(), SingularMatrix> {
+        let (adjugate, inv_det) = self.pivot::<INERTIA>(j)?;
+        self.diag[j] = adjugate * inv_det;
+        let upper_adjugate = self.upper[j - 1] * adjugate;
+        let schur = upper_adjugate * self.lower[j - 1];
+        self.diag[j - 1] -= schur * inv_det;
+        self.upper[j - 1] = upper_adjugate * inv_det;
+        self.lower[j - 1] = (adjugate * self.lower[j - 1]) * inv_det;
+        Ok(())
+    }
+
+    /// Solves `A x = rhs` in place (after [`factor`](Self::factor)): both sweeps run from the
+    /// two ends at once.
     pub fn solve_in_place(&self, rhs: &mut [f64]) {
         assert!(self.factored, "solve before factor");
         let n = self.blocks();
-        for i in 1..n {
-            let y = block(rhs, i) - self.lower[i - 1] * block(rhs, i - 1);
-            rhs[3 * i..3 * i + 3].copy_from_slice(y.as_slice());
+        let middle = n / 2;
+        for k in 0..middle {
+            let y = block(rhs, k + 1) - self.lower[k] * block(rhs, k);
+            set_block(rhs, k + 1, &y);
+            let j = n - 1 - k;
+            if j > middle {
+                let z = block(rhs, j - 1) - self.upper[j - 1] * block(rhs, j);
+                set_block(rhs, j - 1, &z);
+            }
         }
-        let last = self.diag[n - 1] * block(rhs, n - 1);
-        rhs[3 * (n - 1)..3 * n].copy_from_slice(last.as_slice());
-        for i in (0..n - 1).rev() {
-            // `upper[i]` holds W_i = D'_i^-1 A_(i,i+1).
+        let x = self.diag[middle] * block(rhs, middle);
+        set_block(rhs, middle, &x);
+        for k in 0..middle {
+            let i = middle - 1 - k;
             let x = self.diag[i] * block(rhs, i) - self.upper[i] * block(rhs, i + 1);
-            rhs[3 * i..3 * i + 3].copy_from_slice(x.as_slice());
+            set_block(rhs, i, &x);
+            let j = middle + 1 + k;
+            if j < n {
+                let x = self.diag[j] * block(rhs, j) - self.lower[j - 1] * block(rhs, j - 1);
+                set_block(rhs, j, &x);
+            }
         }
     }
 
@@ -220,23 +297,14 @@ impl BlockTridiagonal {
         self.negative_pivots
     }
 
-    /// Number of negative eigenvalues of a symmetric `A` (after factorization): by Sylvester's law
-    /// of inertia it equals that of the block diagonal of `A = L D L^T`, i.e. of the pivot blocks
-    /// (whose inverses `diag` holds; an inverse has the same eigenvalue signs). Zero means `A` is
+    /// Number of negative eigenvalues of a symmetric `A` (after
+    /// [`factor_with_inertia`](Self::factor_with_inertia)): by Sylvester's law of inertia it
+    /// equals that of the pivot blocks of its block LDL^T factorization. Zero means `A` is
     /// positive definite: a stable equilibrium when `A` is the tangent stiffness.
     pub fn negative_eigenvalues(&self) -> usize {
         assert!(self.factored, "inertia before factor");
-        self.diag
-            .iter()
-            .map(|inverse| {
-                let symmetric = 0.5 * (inverse + inverse.transpose());
-                symmetric
-                    .symmetric_eigenvalues()
-                    .iter()
-                    .filter(|&&l| l < 0.0)
-                    .count()
-            })
-            .sum()
+        self.inertia
+            .expect("negative_eigenvalues needs factor_with_inertia")
     }
 }
 
@@ -258,6 +326,10 @@ fn adjugate_and_determinant(m: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
 
 fn block(x: &[f64], i: usize) -> Vector3<f64> {
     Vector3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2])
+}
+
+fn set_block(x: &mut [f64], i: usize, value: &Vector3<f64>) {
+    x[3 * i..3 * i + 3].copy_from_slice(value.as_slice());
 }
 
 #[cfg(test)]
@@ -302,17 +374,14 @@ mod tests {
         assert!((inverse * m - Matrix3::identity()).norm() <= 1e-13);
     }
 
-    /// `solve_in_place` inverts `mul` (a non-symmetric, diagonally dominant matrix of five
-    /// blocks, so every block of the factorization is exercised): residual at round-off.
-    #[test]
-    fn solve_inverts_the_product() {
-        let blocks = 5;
+    /// A diagonally dominant matrix of `blocks` blocks, non-symmetric unless `symmetric`.
+    fn test_matrix(blocks: usize, symmetric: bool, shift: f64) -> BlockTridiagonal {
         let mut a = BlockTridiagonal::new(blocks);
         for i in 0..blocks {
             for (n, x) in a.diag[i].iter_mut().enumerate() {
                 *x = (1.7 * (i * 9 + n) as f64).sin();
             }
-            a.diag[i] += Matrix3::identity() * 6.0;
+            a.diag[i] += Matrix3::identity() * shift;
         }
         for i in 0..blocks - 1 {
             for (n, x) in a.upper[i].iter_mut().enumerate() {
@@ -322,14 +391,83 @@ mod tests {
                 *x = (1.3 * (i * 9 + n) as f64 + 2.0).sin();
             }
         }
-        let x: Vec<f64> = (0..3 * blocks).map(|j| (0.7 * j as f64).cos()).collect();
-        let mut ax = vec![0.0; 3 * blocks];
-        a.mul(&x, &mut ax);
-        a.factor().unwrap();
-        a.solve_in_place(&mut ax);
-        for (got, want) in ax.iter().zip(&x) {
-            assert!((got - want).abs() <= 1e-14, "{got} vs {want}");
+        if symmetric {
+            for i in 0..blocks {
+                a.diag[i] = 0.5 * (a.diag[i] + a.diag[i].transpose());
+            }
+            for i in 0..blocks - 1 {
+                a.lower[i] = a.upper[i].transpose();
+            }
         }
+        a
+    }
+
+    /// The dense form of `a` (before factorization).
+    fn dense(a: &BlockTridiagonal) -> nalgebra::DMatrix<f64> {
+        let n = 3 * a.blocks();
+        let mut d = nalgebra::DMatrix::zeros(n, n);
+        for j in 0..n {
+            let mut e = vec![0.0; n];
+            e[j] = 1.0;
+            let mut col = vec![0.0; n];
+            a.mul(&e, &mut col);
+            for i in 0..n {
+                d[(i, j)] = col[i];
+            }
+        }
+        d
+    }
+
+    /// `solve_in_place` inverts `mul` for every size from one block (the middle block alone)
+    /// to eight (both chains, with one or two blocks more on the top chain): residual at
+    /// round-off of a well-conditioned system.
+    #[test]
+    fn solve_inverts_the_product() {
+        for blocks in 1..=8 {
+            let mut a = test_matrix(blocks, false, 6.0);
+            let x: Vec<f64> = (0..3 * blocks).map(|j| (0.7 * j as f64).cos()).collect();
+            let mut ax = vec![0.0; 3 * blocks];
+            a.mul(&x, &mut ax);
+            a.factor().unwrap();
+            a.solve_in_place(&mut ax);
+            for (got, want) in ax.iter().zip(&x) {
+                assert!(
+                    (got - want).abs() <= 1e-14,
+                    "{blocks} blocks: {got} vs {want}"
+                );
+            }
+        }
+    }
+
+    /// The determinant's sign and the inertia of a symmetric indefinite matrix from the pivots
+    /// equal those of its dense eigenvalues.
+    #[test]
+    fn pivots_give_the_determinant_sign_and_the_inertia() {
+        let mut checked = 0;
+        for blocks in 1..=7 {
+            for shift in [-1.5, 0.3, 2.5] {
+                let mut a = test_matrix(blocks, true, shift);
+                let d = dense(&a);
+                let eigenvalues = d.clone().symmetric_eigenvalues();
+                let negative = eigenvalues.iter().filter(|&&l| l < 0.0).count();
+                if eigenvalues.iter().any(|l| l.abs() < 1e-6) || a.factor_with_inertia().is_err() {
+                    continue;
+                }
+                assert_eq!(
+                    a.negative_eigenvalues(),
+                    negative,
+                    "{blocks} blocks, {shift}"
+                );
+                let sign = if a.negative_pivots() % 2 == 0 {
+                    1.0
+                } else {
+                    -1.0
+                };
+                assert_eq!(sign, d.determinant().signum(), "{blocks} blocks, {shift}");
+                checked += 1;
+            }
+        }
+        assert!(checked >= 15, "only {checked} matrices checked");
     }
 
     #[test]

@@ -248,30 +248,31 @@ pub fn straight_compressed_state(rod: &Rod, shortening: f64) -> Vec<f64> {
     u
 }
 
-/// Negative pivots of the constrained tangent at the straight state (= negative eigenvalues for
-/// the first crossing: the block LDL^T keeps the inertia, one negative eigenvalue gives one
-/// pivot block with a negative determinant).
-pub fn negative_pivots(rod: &Rod, shortening: f64) -> usize {
+/// Negative eigenvalues of the constrained tangent at the straight state, from the pivots of its
+/// block LDL^T factorization (Sylvester's law of inertia); `None` where the tangent is singular
+/// to working precision (at the threshold itself).
+pub fn negative_eigenvalues(rod: &Rod, shortening: f64) -> Option<usize> {
     let u = straight_compressed_state(rod, shortening);
     let mut jac = BlockTridiagonal::new(rod.nodes());
     let mut f = vec![0.0; rod.dofs()];
     rod.internal_force_and_tangent(&u, &mut f, &mut jac, 1.0);
     jac.constrain(&rod.fixed);
-    jac.factor().expect("tangent singular at a bisection point");
-    jac.negative_pivots()
+    jac.factor_with_inertia().ok()?;
+    Some(jac.negative_eigenvalues())
 }
 
-/// Bisection for the smallest shortening with a negative pivot, to relative 1e-13.
+/// Bisection for the smallest shortening with a negative eigenvalue, to relative 1e-13 (or to
+/// a point where the tangent is singular to working precision).
 pub fn buckling_threshold(rod: &Rod, upper: f64) -> f64 {
     let (mut lo, mut hi) = (0.0, upper);
-    assert_eq!(negative_pivots(rod, lo), 0);
-    assert!(negative_pivots(rod, hi) > 0);
+    assert_eq!(negative_eigenvalues(rod, lo), Some(0));
+    assert!(negative_eigenvalues(rod, hi).is_some_and(|n| n > 0));
     while hi - lo > 1e-13 * hi {
         let mid = 0.5 * (lo + hi);
-        if negative_pivots(rod, mid) == 0 {
-            lo = mid;
-        } else {
-            hi = mid;
+        match negative_eigenvalues(rod, mid) {
+            Some(0) => lo = mid,
+            Some(_) => hi = mid,
+            None => return mid,
         }
     }
     0.5 * (lo + hi)

@@ -115,10 +115,13 @@ pub fn refine_critical_points(
             pt.negative_eigenvalues != n0
         });
         // Orientation of the path: the increment's chord. dlambda/ds has the sign of
-        // chord . K^-1 q (the tangent is (K^-1 q, 1) up to a factor).
+        // chord . K^-1 q (the tangent is (K^-1 q, 1) up to a factor), taken at the path's
+        // points on either side: at the bisection's ends, a bracket of 1e-14 from the
+        // critical point, K is singular to round-off and the sign of its small eigenvalue
+        // depends on the order of elimination.
         let chord: Vec<f64> = p[i].u.iter().zip(&p[i - 1].u).map(|(a, b)| a - b).collect();
         let sign = |u: &[f64]| tangent_direction(rod, &q, u).map(|t| dot(&chord, &t).signum());
-        let turns = match (sign(&before.u), sign(&after.u)) {
+        let turns = match (sign(&p[i - 1].u), sign(&p[i].u)) {
             (Some(a), Some(b)) => a != b,
             // Fall back on the loads around the point.
             _ => (before.load - p[i - 1].load) * (p[i].load - after.load) < 0.0,

@@ -53,7 +53,7 @@ pub fn equilibria_at_load(
         let mut f = vec![0.0; rod.dofs()];
         rod.internal_force_and_tangent(&u, &mut f, &mut jac, 1.0);
         jac.constrain(&rod.fixed);
-        let negative = if jac.factor().is_ok() {
+        let negative = if jac.factor_with_inertia().is_ok() {
             jac.negative_eigenvalues()
         } else {
             usize::MAX

@@ -101,7 +101,7 @@ impl Work {
         self.jac.set_zero();
         rod.internal_force_and_tangent(u, &mut self.f, &mut self.jac, 1.0);
         self.jac.constrain(&rod.fixed);
-        self.jac.factor().is_ok()
+        self.jac.factor_with_inertia().is_ok()
     }
 }
 
