@@ -185,8 +185,10 @@ fn the_tangent_agrees_with_two_nearby_trajectories() {
 
 #[test]
 fn tangent_vectors_start_at_lyapunov_start() {
-    // Before lyapunov_start the vectors rest and cost nothing (no extra factorization); they
-    // count after lyapunov_align more.
+    // Before lyapunov_start the vectors rest and cost nothing (the same factorizations, and
+    // the vectors unchanged); from it on they move (at most one extra factorization per
+    // sub-step, where the tangent map's refinement is not trusted: tangent_map.rs); they count
+    // after lyapunov_align more.
     let period = 2.0 * std::f64::consts::PI / 3500.0;
     let mut plain = buckled(1.5, 3500.0, 0.0, 0.0);
     let scene = plain.scene().clone();
@@ -216,7 +218,7 @@ fn tangent_vectors_start_at_lyapunov_start() {
             late.advance(period).unwrap(),
         );
         let extra = b.factorizations - a.factorizations;
-        assert!(extra >= 1 && extra <= b.substeps as u32, "{extra}");
+        assert!(extra <= b.substeps as u32, "{extra}");
     }
     assert_ne!(late.snapshot().lyapunov.unwrap().du, initial.du);
     assert_eq!(output(&late, "lyapunov_time"), 0.0);

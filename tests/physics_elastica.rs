@@ -276,7 +276,7 @@ fn slender_cantilever_tangent_factors() {
         let mut jac = BlockTridiagonal::new(rod.nodes());
         let mut f = vec![0.0; rod.dofs()];
         rod.internal_force_and_tangent(&u, &mut f, &mut jac, 1.0);
-        jac.constrain(&rod.fixed);
+        jac.constrain(rod.constrained());
         let dense = common::dense(&jac);
         let mut rng = common::Rng::new(7);
         let rhs: Vec<f64> = (0..rod.dofs())

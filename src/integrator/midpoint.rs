@@ -15,6 +15,7 @@
 use super::newton::{
     chord_correction, inf_norm, newton_correction, NewtonFailure, NewtonSettings, NewtonStats,
 };
+use super::tangent_map::TangentMap;
 use crate::model::element::cayley;
 use crate::model::rod::ROTATION;
 use crate::model::{LoadSet, Rod};
@@ -91,14 +92,14 @@ fn error_after(c: f64, previous: Option<f64>) -> f64 {
     }
 }
 
-/// Which Jacobian a residual evaluation also assembles.
+/// What a residual evaluation computes with the tangent stiffness.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Tangent {
     Skip,
-    /// Into `jac`, for a Newton correction.
+    /// The Jacobian, into `jac`, for a Newton correction.
     Iteration,
-    /// Into `linear`, for the tangent map (see [`Midpoint::linearization`]).
-    Linearization,
+    /// The element tangents, kept for the tangent map (see [`TangentMap`]).
+    Elements,
 }
 
 #[derive(Clone, Debug)]
@@ -108,21 +109,22 @@ pub struct Midpoint {
     /// Reuse the last factorized Jacobian for further corrections while they contract fast
     /// (see [`Midpoint::step`]); `false` gives plain Newton, one factorization per correction.
     pub reuse_factorization: bool,
-    /// Leave the Jacobian factored at the converged step (see [`Midpoint::linearization`]):
-    /// for the tangent map of Lyapunov exponents. Does not change the step's result.
-    pub linearize: bool,
     /// The Jacobian of the Newton corrections (and of the chord corrections that reuse it).
     jac: BlockTridiagonal,
-    /// With `linearize`: the Jacobian at the iterate of the last chord correction, assembled
-    /// with its residual; the linearization when the iteration ends on a chord correction.
+    /// The tangent map's systems that a step solves besides its own (Lyapunov exponents; see
+    /// [`Midpoint::tangent_map_mut`]). Solving them does not change the step's result.
+    tangents: TangentMap,
+    /// The Jacobian at the last chord correction's iterate, where the tangent map's
+    /// refinement cannot be trusted ([`TangentMap::refine`]).
     linear: BlockTridiagonal,
-    /// Whether the linearization is `jac` (the iteration ended on a Newton correction).
-    linear_in_jac: bool,
     /// `2/dt^2 M + C/dt` for `dynamic_dt`: the constant part of the Jacobian.
     dynamic_part: BlockTridiagonal,
     dynamic_dt: f64,
     du: Vec<f64>,
+    /// The state at which the residual was last evaluated; after a step, its increment.
     u_mid: Vec<f64>,
+    /// Scratch: the inertia bracket of a residual evaluation.
+    bracket: Vec<f64>,
     residual: Vec<f64>,
     inertia: Vec<f64>,
     /// Held dofs whose rows of the equation of motion each step keeps, and those rows.
@@ -139,14 +141,14 @@ impl Midpoint {
             settings: NewtonSettings::tight(rod.curve.length()),
             scheme: Scheme::Midpoint,
             reuse_factorization: true,
-            linearize: false,
             jac: BlockTridiagonal::new(rod.nodes()),
+            tangents: TangentMap::default(),
             linear: BlockTridiagonal::new(rod.nodes()),
-            linear_in_jac: true,
             dynamic_part: BlockTridiagonal::new(rod.nodes()),
             dynamic_dt: f64::NAN,
             du: vec![0.0; n],
             u_mid: vec![0.0; n],
+            bracket: vec![0.0; n],
             residual: vec![0.0; n],
             inertia: vec![0.0; n],
             held: Vec::new(),
@@ -228,6 +230,11 @@ impl Midpoint {
             *m = -2.0 / dt * v;
         }
         let mut stats = NewtonStats::default();
+        let tangents = self.tangents.count() > 0;
+        debug_assert!(
+            !tangents || self.scheme == Scheme::Midpoint,
+            "the tangent map is the midpoint rule's"
+        );
         // The last correction applied, and whether the current factorization may be reused.
         let mut previous: Option<f64> = None;
         let mut reusable = false;
@@ -237,9 +244,10 @@ impl Midpoint {
         let ended_on_newton;
         loop {
             if let (true, Some(last)) = (reusable, previous) {
-                // With `linearize`, the Jacobian at this iterate too (the same residual bits).
-                let tangent = if self.linearize {
-                    Tangent::Linearization
+                // With the tangent map, its element products at this iterate too (the same
+                // residual bits).
+                let tangent = if tangents {
+                    Tangent::Elements
                 } else {
                     Tangent::Skip
                 };
@@ -269,6 +277,9 @@ impl Midpoint {
             self.residual(rod, loads, state, t_mid, dt, Tangent::Iteration);
             let (residual_norm, correction) =
                 newton_correction(rod, &mut self.jac, &mut self.residual, stats.iterations)?;
+            if tangents {
+                self.tangents.solve(&self.jac);
+            }
             self.apply_correction();
             stats.record(residual_norm, correction);
             stats.factorizations += 1;
@@ -284,14 +295,15 @@ impl Midpoint {
             reusable = self.reuse_factorization;
         }
         self.update_held_rows();
-        if self.linearize {
-            // The Jacobian at the iterate before the last correction, which passed the
-            // convergence test: the converged step's to the solver's tolerance.
-            self.linear_in_jac = ended_on_newton;
-            if !ended_on_newton {
-                self.linear.constrain(&rod.fixed);
-                self.linear.factor()?;
+        // Ended on a Newton correction, the factorization is at the iterate before it, which
+        // passed the convergence test: the tangent map's first solve was exact.
+        if tangents && !ended_on_newton {
+            let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
+            if !self.tangents.refine(rod, &self.jac, a, c) {
+                self.tangents
+                    .solve_exactly(rod, &self.dynamic_part, &mut self.linear)?;
                 stats.factorizations += 1;
+                stats.tangent_factorizations += 1;
             }
         }
         self.u_mid.copy_from_slice(&self.du);
@@ -330,25 +342,19 @@ impl Midpoint {
         Ok(())
     }
 
-    /// The Jacobian `2/dt^2 M + C/dt + K_T/2` of the last step, factored, when
-    /// [`Midpoint::linearize`] is set: what the tangent map of the step needs
-    /// ([`super::tangent`]). It is taken at the iterate before the last correction, which
-    /// passed the convergence test (typically 1e-9 of the increment or less away from the
-    /// converged step; the Jacobian before the last Newton correction, 1e-2 away, would put the
-    /// exponent of the buckled beam's chaotic orbit at T/64 off by 1e-3 per period, as much as
-    /// a periodic orbit's whole exponent). Held dofs have identity rows.
-    pub fn linearization(&self) -> &BlockTridiagonal {
-        debug_assert!(self.linearize, "linearization without Midpoint::linearize");
-        debug_assert_eq!(
-            self.scheme,
-            Scheme::Midpoint,
-            "the tangent map is the midpoint rule's"
-        );
-        if self.linear_in_jac {
-            &self.jac
-        } else {
-            &self.linear
-        }
+    /// The tangent map's systems that the next steps solve besides their own (reserve them
+    /// first with [`Midpoint::reserve_tangents`]); their solutions after a step.
+    pub fn tangent_map_mut(&mut self) -> &mut TangentMap {
+        &mut self.tangents
+    }
+
+    pub fn tangent_map(&self) -> &TangentMap {
+        &self.tangents
+    }
+
+    /// Room for `count` tangent-map systems (allocates: call before stepping).
+    pub fn reserve_tangents(&mut self, count: usize, rod: &Rod) {
+        self.tangents.reserve(count, rod);
     }
 
     /// `|du + correction|_inf` with the correction in `residual`.
@@ -373,11 +379,7 @@ impl Midpoint {
         dt: f64,
         tangent: Tangent,
     ) {
-        let mut jac = match tangent {
-            Tangent::Skip => None,
-            Tangent::Iteration => Some(&mut self.jac),
-            Tangent::Linearization => Some(&mut self.linear),
-        };
+        let mut jac = (tangent == Tangent::Iteration).then_some(&mut self.jac);
         if let Some(j) = jac.as_deref_mut() {
             j.copy_from(&self.dynamic_part);
         }
@@ -388,6 +390,12 @@ impl Midpoint {
                 }
                 if let Some(jac) = jac {
                     rod.internal_force_and_tangent(&self.u_mid, &mut self.residual, jac, 0.5);
+                } else if tangent == Tangent::Elements {
+                    rod.internal_force_and_element_tangents(
+                        &self.u_mid,
+                        &mut self.residual,
+                        self.tangents.element_tangents(),
+                    );
                 } else {
                     rod.internal_force(&self.u_mid, &mut self.residual);
                 }
@@ -410,16 +418,16 @@ impl Midpoint {
                 }
             }
         }
-        // M (a du - 2/dt v_n): reuse `u_mid` as scratch for the bracket. The energy-momentum
-        // scheme moves rotations by their Cayley increment (see `motion`).
+        // M (a du - 2/dt v_n). The energy-momentum scheme moves rotations by their Cayley
+        // increment (see `motion`).
         let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
         let scheme = self.scheme;
-        for (i, ((s, d), m)) in (self.u_mid.iter_mut().zip(&self.du).zip(&self.inertia)).enumerate()
+        for (i, ((s, d), m)) in
+            (self.bracket.iter_mut().zip(&self.du).zip(&self.inertia)).enumerate()
         {
             *s = a * motion(scheme, i, *d) + m;
         }
-        rod.add_mass_times(&self.u_mid, &mut self.residual, 1.0);
-        rod.add_damping_times(&self.du, &mut self.residual, c);
+        rod.add_mass_and_damping_times((&self.bracket, 1.0), (&self.du, c), &mut self.residual);
         loads.add_to(t_mid, &mut self.residual, -1.0);
         for (row, &dof) in self.held_rows.iter_mut().zip(&self.held) {
             *row = self.residual[dof];

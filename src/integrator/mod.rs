@@ -4,6 +4,7 @@ pub mod midpoint;
 pub mod newton;
 pub mod statics;
 pub mod tangent;
+pub mod tangent_map;
 
 pub use midpoint::{DynamicState, Midpoint, Scheme};
 pub use newton::{NewtonFailure, NewtonSettings, NewtonStats};

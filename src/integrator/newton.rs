@@ -37,8 +37,11 @@ pub const HISTORY: usize = 32;
 pub struct NewtonStats {
     /// Corrections applied (Newton and chord).
     pub iterations: u32,
-    /// Jacobians assembled and factored (Newton corrections).
+    /// Jacobians assembled and factored (Newton corrections and exact tangent-map solves).
     pub factorizations: u32,
+    /// Of those, the factorizations for the tangent map (where its refinement could not be
+    /// trusted: `tangent_map.rs`).
+    pub tangent_factorizations: u32,
     pub residuals: [f64; HISTORY],
     pub corrections: [f64; HISTORY],
 }
@@ -48,6 +51,7 @@ impl Default for NewtonStats {
         NewtonStats {
             iterations: 0,
             factorizations: 0,
+            tangent_factorizations: 0,
             residuals: [0.0; HISTORY],
             corrections: [0.0; HISTORY],
         }
@@ -118,7 +122,7 @@ pub(crate) fn newton_correction(
     if !residual_norm.is_finite() {
         return Err(NewtonFailure::NonFinite { iteration });
     }
-    jac.constrain(&rod.fixed);
+    jac.constrain(rod.constrained());
     jac.factor()?;
     residual.iter_mut().for_each(|r| *r = -*r);
     jac.solve_in_place(residual);

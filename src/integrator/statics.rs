@@ -107,7 +107,7 @@ impl StaticSolver {
     pub fn negative_eigenvalues(&mut self, rod: &Rod, u: &[f64]) -> Option<usize> {
         self.jac.set_zero();
         rod.internal_force_and_tangent(u, &mut self.residual, &mut self.jac, 1.0);
-        self.jac.constrain(&rod.fixed);
+        self.jac.constrain(rod.constrained());
         self.jac.factor_with_inertia().ok()?;
         Some(self.jac.negative_eigenvalues())
     }

@@ -8,8 +8,10 @@
 //! `J d(du) = -K du_n + 2/dt M dv_n`, and `K = 2 (J - A)` gives
 //! `du_(n+1) = J^-1 (2 A du_n + 2/dt M dv_n) - du_n`, `dv_(n+1) = 2/dt (du_(n+1) - du_n) - dv_n`:
 //!
-//! one solve with the step's factored Jacobian per tangent vector, no product with `K`. Held
-//! dofs are not part of the state (their motion is prescribed): their components stay zero.
+//! one system with the converged step's Jacobian per tangent vector, which the step solves
+//! along with its own (`tangent_map.rs`: the Jacobian of its Newton iteration and one
+//! refinement, exact to about 1e-12). Held dofs are not part of the state (their motion is
+//! prescribed): their components stay zero.
 //!
 //! `k` tangent vectors are advanced together and re-orthonormalized after every sub-step
 //! (modified Gram-Schmidt, i.e. a QR decomposition, in the norm
@@ -17,7 +19,7 @@
 //! the leading `k` exponents times the time (Benettin et al.). Renormalizing every sub-step
 //! keeps the vectors bounded whatever the communication step, and makes the estimate
 //! independent of how sub-steps are grouped into communication steps.
-use super::Midpoint;
+use super::tangent_map::TangentMap;
 use crate::model::Rod;
 
 /// The most exponents one simulation estimates.
@@ -39,20 +41,16 @@ pub struct Lyapunov {
     counted_time: f64,
 }
 
-/// Scratch for [`Lyapunov::advance`] (two vectors of `dofs`), kept by the caller so that a
+/// Scratch for [`Lyapunov::prepare`] (a vector of `dofs`), kept by the caller so that a
 /// step allocates nothing.
 #[derive(Clone, Debug)]
 pub struct TangentScratch {
-    rhs: Vec<f64>,
     x: Vec<f64>,
 }
 
 impl TangentScratch {
     pub fn new(dofs: usize) -> TangentScratch {
-        TangentScratch {
-            rhs: vec![0.0; dofs],
-            x: vec![0.0; dofs],
-        }
+        TangentScratch { x: vec![0.0; dofs] }
     }
 }
 
@@ -142,32 +140,34 @@ impl Lyapunov {
         self.counted_time
     }
 
-    /// Advances the vectors over the sub-step `[t_n, t_n + dt]` that `midpoint` just took
-    /// (with [`Midpoint::linearize`] set, so that its factored Jacobian belongs to the
-    /// converged step), then re-orthonormalizes them and books the growth if `t_n` counts.
-    pub fn advance(
-        &mut self,
-        rod: &Rod,
-        midpoint: &Midpoint,
-        scratch: &mut TangentScratch,
-        t_n: f64,
-        dt: f64,
-    ) {
+    /// Sets the tangent map's systems of the sub-step of size `dt` about to be taken: one per
+    /// vector, `rhs = 2 A du + 2/dt M dv = M (4/dt^2 du + 2/dt dv) + C (2/dt du)` (`map` must
+    /// have room for [`Lyapunov::count`] of them).
+    pub fn prepare(&self, rod: &Rod, dt: f64, map: &mut TangentMap, scratch: &mut TangentScratch) {
         let n = self.dofs();
-        let jac = midpoint.linearization();
+        map.set_count(self.count());
+        for j in 0..self.count() {
+            let du = &self.du[j * n..(j + 1) * n];
+            let dv = &self.dv[j * n..(j + 1) * n];
+            for ((x, u), v) in scratch.x.iter_mut().zip(du).zip(dv) {
+                *x = 4.0 / (dt * dt) * u + 2.0 / dt * v;
+            }
+            let rhs = map.rhs_mut(j);
+            rhs.fill(0.0);
+            rod.add_mass_and_damping_times((&scratch.x, 1.0), (du, 2.0 / dt), rhs);
+            rod.zero_constrained(rhs);
+        }
+    }
+
+    /// Advances the vectors over the sub-step `[t_n, t_n + dt]` just taken, from the solutions
+    /// of the systems that [`Lyapunov::prepare`] set, then re-orthonormalizes them and books
+    /// the growth if `t_n` counts.
+    pub fn advance(&mut self, rod: &Rod, map: &TangentMap, t_n: f64, dt: f64) {
+        let n = self.dofs();
         for j in 0..self.count() {
             let du = &mut self.du[j * n..(j + 1) * n];
             let dv = &mut self.dv[j * n..(j + 1) * n];
-            // rhs = 2 A du + 2/dt M dv = M (4/dt^2 du + 2/dt dv) + C (2/dt du).
-            for ((x, u), v) in scratch.x.iter_mut().zip(du.iter()).zip(dv.iter()) {
-                *x = 4.0 / (dt * dt) * u + 2.0 / dt * v;
-            }
-            scratch.rhs.fill(0.0);
-            rod.add_mass_times(&scratch.x, &mut scratch.rhs, 1.0);
-            rod.add_damping_times(du, &mut scratch.rhs, 2.0 / dt);
-            rod.zero_constrained(&mut scratch.rhs);
-            jac.solve_in_place(&mut scratch.rhs);
-            for ((u, v), x) in du.iter_mut().zip(dv.iter_mut()).zip(&scratch.rhs) {
+            for ((u, v), x) in du.iter_mut().zip(dv.iter_mut()).zip(map.solution(j)) {
                 let du_next = x - *u;
                 *v = 2.0 / dt * (du_next - *u) - *v;
                 *u = du_next;

@@ -8,7 +8,7 @@ use super::element::{
 use super::geometry::ReferenceCurve;
 use super::section::Section;
 use crate::solver::BlockTridiagonal;
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector2;
 
 /// Dof index within a node.
 pub const U1: usize = 0;
@@ -30,10 +30,15 @@ pub struct Rod {
     pub damping: f64,
     pub elements: Vec<Element>,
     inertia: Vec<ElementInertia>,
+    /// The mass and damping matrices as bands of the dof vector (see [`Bands`]).
+    mass_bands: Bands,
+    damping_bands: Bands,
     /// Arc length of each node.
     pub node_s: Vec<f64>,
-    /// Constrained (fixed or prescribed) dofs, per global dof.
+    /// Constrained (fixed or prescribed) dofs, per global dof ([`Rod::fix`]).
     pub fixed: Vec<bool>,
+    /// The constrained dofs in increasing order.
+    constrained: Vec<usize>,
     /// Lumped (diagonal) instead of consistent mass and damping matrices.
     pub lumped: bool,
 }
@@ -55,22 +60,34 @@ impl Rod {
                 Element::new(length, alpha)
             })
             .collect();
-        Rod {
+        let mut rod = Rod {
             curve,
             section,
             damping,
             elements,
             inertia: vec![ElementInertia::new(&section, damping, length); n],
+            mass_bands: Bands::default(),
+            damping_bands: Bands::default(),
             node_s,
             fixed: vec![false; 3 * (n + 1)],
+            constrained: Vec::new(),
             lumped: false,
-        }
+        };
+        rod.update_bands();
+        rod
+    }
+
+    /// The bands of the mass and damping matrices from the element coefficients.
+    fn update_bands(&mut self) {
+        self.mass_bands = Bands::new(&self.inertia, false, self.lumped);
+        self.damping_bands = Bands::new(&self.inertia, true, self.lumped);
     }
 
     /// The same rod with lumped (diagonal, row-sum) mass and damping matrices instead of the
     /// consistent ones: an option for studies, not the model of the specification.
     pub fn with_lumped_mass(mut self) -> Rod {
         self.lumped = true;
+        self.update_bands();
         self
     }
 
@@ -80,6 +97,7 @@ impl Rod {
         for (m, el) in self.inertia.iter_mut().zip(&self.elements) {
             m.rotational_damping = d_w * el.length / 6.0;
         }
+        self.update_bands();
         self
     }
 
@@ -97,7 +115,11 @@ impl Rod {
 
     /// Constrains dof `k` (`U1`, `U2`, `ROTATION`) of `node`.
     pub fn fix(&mut self, node: usize, k: usize) {
-        self.fixed[3 * node + k] = true;
+        let dof = 3 * node + k;
+        self.fixed[dof] = true;
+        if let Err(at) = self.constrained.binary_search(&dof) {
+            self.constrained.insert(at, dof);
+        }
     }
 
     /// The six dofs of element `e` in a nodal vector.
@@ -156,6 +178,35 @@ impl Rod {
         }
     }
 
+    /// `f = f_int(u)` (overwrites) and each element's tangent into `tangents` (one per
+    /// element), not assembled.
+    pub fn internal_force_and_element_tangents(
+        &self,
+        u: &[f64],
+        f: &mut [f64],
+        tangents: &mut [ElementTangent],
+    ) {
+        f.fill(0.0);
+        let mut fe = Vector6::zeros();
+        for ((e, el), ke) in self.elements.iter().enumerate().zip(tangents.iter_mut()) {
+            el.force_and_tangent_into(&self.section, &Self::element_dofs(u, e), &mut fe, ke);
+            add_element_vector(f, e, &fe);
+        }
+    }
+
+    /// `out += scale * K y`, `K` assembled from the element `tangents` (matrix-free).
+    pub fn add_tangent_times(
+        &self,
+        tangents: &[ElementTangent],
+        y: &[f64],
+        out: &mut [f64],
+        scale: f64,
+    ) {
+        for (e, ke) in tangents.iter().enumerate() {
+            add_element_vector(out, e, &(scale * ke.mul(&Self::element_dofs(y, e))));
+        }
+    }
+
     /// `f =` the energy-momentum discrete gradient between `ua` and `ub` (overwrites).
     pub fn discrete_gradient(&self, ua: &[f64], ub: &[f64], f: &mut [f64]) {
         f.fill(0.0);
@@ -205,64 +256,25 @@ impl Rod {
         }
     }
 
-    fn add_pattern_times(&self, x: &[f64], out: &mut [f64], scale: f64, damping: bool) {
-        // Node by node, each entry of `out` read and written once: element by element, the
-        // entries of a shared node were stored by one element and loaded again by the next,
-        // which cost more than the arithmetic. The two elements' terms are added in the same
-        // order as element by element (left, then right), so results are the same to the bit.
-        let lumped = self.lumped;
-        let factor = if lumped { 3.0 * scale } else { scale };
-        let coefficients = |m: &ElementInertia| m.coefficients(damping) * factor;
-        let node = |i: usize| Vector3::new(x[3 * i], x[3 * i + 1], x[3 * i + 2]);
-        // The element's term at its first node (`at`) and at its second node.
-        let first = |c: &Vector3<f64>, at: &Vector3<f64>, other: &Vector3<f64>| {
-            if lumped {
-                c.component_mul(at)
-            } else {
-                c.component_mul(&(2.0 * at + other))
-            }
-        };
-        let second = |c: &Vector3<f64>, other: &Vector3<f64>, at: &Vector3<f64>| {
-            if lumped {
-                c.component_mul(at)
-            } else {
-                c.component_mul(&(other + 2.0 * at))
-            }
-        };
-        let add = |out: &mut [f64], i: usize, terms: &[Vector3<f64>]| {
-            for k in 0..3 {
-                let mut v = out[3 * i + k];
-                for t in terms {
-                    v += t[k];
-                }
-                out[3 * i + k] = v;
-            }
-        };
-        let n = self.inertia.len();
-        let mut c_left = coefficients(&self.inertia[0]);
-        let (mut before, mut here) = (node(0), node(1));
-        add(out, 0, &[first(&c_left, &before, &here)]);
-        for (i, m) in self.inertia.iter().enumerate().skip(1) {
-            let c_right = coefficients(m);
-            let after = node(i + 1);
-            let terms = [
-                second(&c_left, &before, &here),
-                first(&c_right, &here, &after),
-            ];
-            add(out, i, &terms);
-            (c_left, before, here) = (c_right, here, after);
-        }
-        add(out, n, &[second(&c_left, &before, &here)]);
-    }
-
     /// `out += scale * M x`.
     pub fn add_mass_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
-        self.add_pattern_times(x, out, scale, false);
+        self.mass_bands.add_times(x, out, scale);
     }
 
-    /// `out += scale * C x`.
+    /// `out += scale * C x` (damping).
     pub fn add_damping_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
-        self.add_pattern_times(x, out, scale, true);
+        self.damping_bands.add_times(x, out, scale);
+    }
+
+    /// `out += mass_scale * M x + damping_scale * C y` in one pass.
+    pub fn add_mass_and_damping_times(
+        &self,
+        (x, mass_scale): (&[f64], f64),
+        (y, damping_scale): (&[f64], f64),
+        out: &mut [f64],
+    ) {
+        self.mass_bands.add_times(x, out, mass_scale);
+        self.damping_bands.add_times(y, out, damping_scale);
     }
 
     pub fn strain_energy(&self, u: &[f64]) -> f64 {
@@ -369,8 +381,58 @@ impl Rod {
 
     /// Sets constrained entries of `x` to zero.
     pub fn zero_constrained(&self, x: &mut [f64]) {
-        for (xi, _) in x.iter_mut().zip(&self.fixed).filter(|(_, &f)| f) {
-            *xi = 0.0;
+        for &dof in &self.constrained {
+            x[dof] = 0.0;
+        }
+    }
+
+    /// The constrained dofs in increasing order.
+    pub fn constrained(&self) -> &[usize] {
+        &self.constrained
+    }
+}
+
+/// A consistent (or lumped) mass or damping matrix as two bands of the dof vector: the
+/// diagonal, and the coupling of each dof with the same dof of the next node (the matrix is
+/// symmetric, so that band is also the one below). Element `e` adds `[[2 c, c], [c, 2 c]]`
+/// per dof kind (`[[3 c, 0], [0, 3 c]]` lumped), `c` its coefficient.
+#[derive(Clone, Debug, Default)]
+struct Bands {
+    diagonal: Vec<f64>,
+    off: Vec<f64>,
+}
+
+impl Bands {
+    fn new(inertia: &[ElementInertia], damping: bool, lumped: bool) -> Bands {
+        let dofs = 3 * (inertia.len() + 1);
+        let mut bands = Bands {
+            diagonal: vec![0.0; dofs],
+            off: vec![0.0; dofs.saturating_sub(3)],
+        };
+        let (own, shared) = if lumped { (3.0, 0.0) } else { (2.0, 1.0) };
+        for (e, m) in inertia.iter().enumerate() {
+            let c = m.coefficients(damping);
+            for k in 0..3 {
+                bands.diagonal[3 * e + k] += own * c[k];
+                bands.diagonal[3 * e + 3 + k] += own * c[k];
+                bands.off[3 * e + k] += shared * c[k];
+            }
+        }
+        bands
+    }
+
+    /// `out += scale * P x`.
+    fn add_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
+        // Three passes the compiler vectorizes: the diagonal, the band above, the band below.
+        let n = out.len();
+        for ((o, d), x) in out.iter_mut().zip(&self.diagonal).zip(x) {
+            *o += scale * (d * x);
+        }
+        for ((o, c), x) in out[..n - 3].iter_mut().zip(&self.off).zip(&x[3..]) {
+            *o += scale * (c * x);
+        }
+        for ((o, c), x) in out[3..].iter_mut().zip(&self.off).zip(&x[..n - 3]) {
+            *o += scale * (c * x);
         }
     }
 }

@@ -131,17 +131,21 @@ impl Analysis {
         self.kick(setup, values, trial);
     }
 
-    /// Whether the sub-step from `t_n` advances the tangent vectors (the integrator must then
-    /// leave its Jacobian factored at the converged step).
-    pub fn linearizes(&self, t_n: f64) -> bool {
-        self.trial.is_some() && t_n >= self.start
+    /// Sets the tangent map's systems that the sub-step from `t_n` of size `dt` solves:
+    /// those of the trial tangent vectors from the start time on, else none.
+    pub fn prepare(&mut self, setup: &Setup, t_n: f64, dt: f64, integrator: &mut Midpoint) {
+        let map = integrator.tangent_map_mut();
+        match self.trial.as_ref().filter(|_| t_n >= self.start) {
+            Some(t) => t.prepare(&setup.rod, dt, map, &mut self.scratch),
+            None => map.set_count(0),
+        }
     }
 
     /// Advances the trial tangent vectors over the sub-step from `t_n` that `integrator` just
-    /// took (if it [`Analysis::linearizes`]).
+    /// took (if [`Analysis::prepare`] set its systems).
     pub fn substep(&mut self, setup: &Setup, integrator: &Midpoint, t_n: f64, dt: f64) {
         if let Some(t) = self.trial.as_mut().filter(|_| t_n >= self.start) {
-            t.advance(&setup.rod, integrator, &mut self.scratch, t_n, dt);
+            t.advance(&setup.rod, integrator.tangent_map(), t_n, dt);
         }
     }
 
@@ -166,6 +170,11 @@ impl Analysis {
             Some(omega) if omega > 0.0 => e.exponent(j) * std::f64::consts::TAU / omega,
             Some(_) => 0.0,
         }
+    }
+
+    /// The number of tangent vectors (exponents) estimated.
+    pub fn vectors(&self) -> usize {
+        self.exponents.as_ref().map_or(0, Lyapunov::count)
     }
 
     pub fn counted_time(&self) -> f64 {

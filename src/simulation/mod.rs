@@ -141,6 +141,7 @@ impl Simulation {
         };
         let analysis =
             analysis::Analysis::new(&scene, &values, &setup, integrator.scheme, &mut initial)?;
+        integrator.reserve_tangents(analysis.vectors(), &setup.rod);
         let energy = EnergyLedger {
             initial_energy: setup.rod.strain_energy(&initial.u),
             ..EnergyLedger::default()

@@ -154,7 +154,8 @@ impl Simulation {
             let t_k = clock.at(k as u64);
             self.motion_increments(k, substeps);
             self.interpolate_load_inputs((k as f64 + 0.5) * dt);
-            self.integrator.linearize = self.analysis.linearizes(t_k);
+            self.analysis
+                .prepare(&self.setup, t_k, dt, &mut self.integrator);
             let s = &self.setup;
             let stats = self
                 .integrator

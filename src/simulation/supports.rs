@@ -60,7 +60,7 @@ impl MotionSolver {
     pub fn new(rod: &Rod) -> Result<MotionSolver, String> {
         let mut mass = BlockTridiagonal::new(rod.nodes());
         rod.add_mass(&mut mass, 1.0);
-        mass.constrain(&rod.fixed);
+        mass.constrain(rod.constrained());
         mass.factor().map_err(|e| {
             format!("the mass matrix has a {e}: rho A or rho I too small to be represented")
         })?;

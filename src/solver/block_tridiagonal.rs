@@ -82,10 +82,11 @@ impl BlockTridiagonal {
     /// Adds `scale * k` for the element between nodes `e` and `e + 1`.
     pub fn add_element(&mut self, e: usize, k: &ElementTangent, scale: f64) {
         debug_assert!(!self.factored);
-        self.diag[e] += scale * k.aa;
-        self.upper[e] += scale * k.ab;
-        self.lower[e] += scale * k.ab.transpose();
-        self.diag[e + 1] += scale * k.bb;
+        let (aa, ab, bb) = k.blocks();
+        self.diag[e] += scale * aa;
+        self.upper[e] += scale * ab;
+        self.lower[e] += scale * ab.transpose();
+        self.diag[e + 1] += scale * bb;
     }
 
     /// Adds `scale * [[2 c, c], [c, 2 c]]` per dof kind (`coeffs = (c_u1, c_u2, c_w)`), the
@@ -111,11 +112,10 @@ impl BlockTridiagonal {
         self.lower[e] += d;
     }
 
-    /// Replaces the rows and columns of the constrained dofs by those of the identity, which is
+    /// Replaces the rows and columns of the constrained `dofs` by those of the identity, which is
     /// the same as removing them from the system (their right-hand side must be zero).
-    pub fn constrain(&mut self, fixed: &[bool]) {
-        debug_assert_eq!(fixed.len(), 3 * self.blocks());
-        for (dof, _) in fixed.iter().enumerate().filter(|(_, &f)| f) {
+    pub fn constrain(&mut self, dofs: &[usize]) {
+        for &dof in dofs {
             let (i, k) = (dof / 3, dof % 3);
             self.diag[i].row_mut(k).fill(0.0);
             self.diag[i].column_mut(k).fill(0.0);
@@ -208,7 +208,10 @@ impl BlockTridiagonal {
     }
 
     /// The adjugate and `1 / det` of the pivot block `i`, checked and counted.
-    fn pivot<const INERTIA: bool>(&mut self, i: usize) -> Result<(Matrix3<f64>, f64), SingularMatrix> {
+    fn pivot<const INERTIA: bool>(
+        &mut self,
+        i: usize,
+    ) -> Result<(Matrix3<f64>, f64), SingularMatrix> {
         let (adjugate, det) = adjugate_and_determinant(&self.diag[i]);
         // Relative to the product of the column norms (Hadamard's bound), which is blind to
         // how differently the dofs are scaled (a slender rod's rotation columns are orders of

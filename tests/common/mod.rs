@@ -256,7 +256,7 @@ pub fn negative_eigenvalues(rod: &Rod, shortening: f64) -> Option<usize> {
     let mut jac = BlockTridiagonal::new(rod.nodes());
     let mut f = vec![0.0; rod.dofs()];
     rod.internal_force_and_tangent(&u, &mut f, &mut jac, 1.0);
-    jac.constrain(&rod.fixed);
+    jac.constrain(rod.constrained());
     jac.factor_with_inertia().ok()?;
     Some(jac.negative_eigenvalues())
 }

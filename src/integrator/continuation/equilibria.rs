@@ -52,7 +52,7 @@ pub fn equilibria_at_load(
         let mut jac = BlockTridiagonal::new(rod.nodes());
         let mut f = vec![0.0; rod.dofs()];
         rod.internal_force_and_tangent(&u, &mut f, &mut jac, 1.0);
-        jac.constrain(&rod.fixed);
+        jac.constrain(rod.constrained());
         let negative = if jac.factor_with_inertia().is_ok() {
             jac.negative_eigenvalues()
         } else {

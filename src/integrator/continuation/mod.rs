@@ -100,7 +100,7 @@ impl Work {
     fn factor(&mut self, rod: &Rod, u: &[f64]) -> bool {
         self.jac.set_zero();
         rod.internal_force_and_tangent(u, &mut self.f, &mut self.jac, 1.0);
-        self.jac.constrain(&rod.fixed);
+        self.jac.constrain(rod.constrained());
         self.jac.factor_with_inertia().is_ok()
     }
 }
