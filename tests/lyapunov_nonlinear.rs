@@ -166,10 +166,13 @@ fn the_tangent_agrees_with_two_nearby_trajectories() {
     // (d0 = 1e-8 of a state of size ~1) follows the tangent map up to its own nonlinearity
     // O(d0) and the Newton tolerance's noise (1e-10 of a step's increment, ~1e-13 absolute:
     // 1e-5 of d0, per period), so the two estimates agree to about 1e-5 per period (measured
-    // 1e-6): tolerance 1e-5, far below the exponents themselves (0.97 chaotic, -0.0012
-    // periodic). Chaotic (F = 1.5) and periodic (F = 2.0, period-1 orbit) cases at
-    // Omega = 3500, 100 periods averaged after 50.
-    for (f, chaotic) in [(1.5, true), (2.0, false)] {
+    // 1e-10 and 2e-6): tolerance 1e-5, far below the exponents themselves (0.90 chaotic,
+    // -0.0012 periodic). Chaotic (F = 1.2) and periodic (F = 2.0, period-1 orbit) cases at
+    // Omega = 3500, 100 periods averaged after 50. (At F = 1.5 the chaos at 64 sub-steps per
+    // period is transient: whether this window is still chaotic depends on round-off, and
+    // near the neutral orbit it ends on the two estimates differ by 1e-3 over 100 periods,
+    // 1e-5 over 600: the renormalizations sample an oscillating norm differently.)
+    for (f, chaotic) in [(1.2, true), (2.0, false)] {
         let (twin, tangent) = twin_exponent(f, 3500.0, 150, 50);
         println!("F = {f}: twin {twin:.6}, tangent {tangent:.6} per period");
         assert!(

@@ -118,34 +118,48 @@ pub(crate) fn newton_correction(
 ) -> Result<(f64, f64), NewtonFailure> {
     rod.zero_constrained(residual);
     // Constrained entries are zero now: the norm over all is the norm over the free dofs.
-    let residual_norm = inf_norm(residual);
+    let residual_norm = negate_and_norm(residual);
     if !residual_norm.is_finite() {
         return Err(NewtonFailure::NonFinite { iteration });
     }
     jac.constrain(rod.constrained());
     jac.factor()?;
-    residual.iter_mut().for_each(|r| *r = -*r);
     jac.solve_in_place(residual);
     Ok((residual_norm, inf_norm(residual)))
 }
 
 /// A chord correction: with the residual `R` in `residual` and `jac` factored earlier (at a
-/// nearby iterate), overwrites `residual` with `-J^-1 R`. Returns the norm of `R` (free dofs),
-/// or `None` when it is not finite.
+/// nearby iterate), overwrites `residual` with `-J^-1 R`. Returns the norms of `R` (free dofs)
+/// and of the correction, or `None` when `R` is not finite.
 pub(crate) fn chord_correction(
     rod: &Rod,
     jac: &BlockTridiagonal,
     residual: &mut [f64],
-) -> Option<f64> {
+) -> Option<(f64, f64)> {
     rod.zero_constrained(residual);
     // Constrained entries are zero now: the norm over all is the norm over the free dofs.
-    let residual_norm = inf_norm(residual);
+    let residual_norm = negate_and_norm(residual);
     if !residual_norm.is_finite() {
         return None;
     }
-    residual.iter_mut().for_each(|r| *r = -*r);
     jac.solve_in_place(residual);
-    Some(residual_norm)
+    Some((residual_norm, inf_norm(residual)))
+}
+
+/// Negates `x` and returns its largest magnitude (NaN if it holds a NaN): one pass.
+fn negate_and_norm(x: &mut [f64]) -> f64 {
+    let (mut largest, mut nan) = (0.0f64, false);
+    for v in x.iter_mut() {
+        *v = -*v;
+        let a = v.abs();
+        largest = if a > largest { a } else { largest };
+        nan |= a.is_nan();
+    }
+    if nan {
+        f64::NAN
+    } else {
+        largest
+    }
 }
 
 /// The largest magnitude in `x`; NaN if `x` holds a NaN. (Max and NaN test kept apart, in

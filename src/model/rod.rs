@@ -2,6 +2,7 @@
 //! matrices (internal force, tangent, mass, damping, loads). Global dof `3 i + k` is `u1`, `u2`,
 //! `w` (k = 0, 1, 2) of node `i`; element `e` joins nodes `e` and `e + 1`, so its six dofs are
 //! contiguous and the matrices are block tridiagonal.
+use super::bands::Bands;
 use super::element::{
     shape_functions, Element, ElementInertia, ElementTangent, Vector6, GAUSS_POINTS,
 };
@@ -79,8 +80,14 @@ impl Rod {
 
     /// The bands of the mass and damping matrices from the element coefficients.
     fn update_bands(&mut self) {
-        self.mass_bands = Bands::new(&self.inertia, false, self.lumped);
-        self.damping_bands = Bands::new(&self.inertia, true, self.lumped);
+        let coefficients = |damping: bool| {
+            let c: Vec<[f64; 3]> = (self.inertia.iter())
+                .map(|m| m.coefficients(damping).into())
+                .collect();
+            Bands::consistent(&c, self.lumped)
+        };
+        self.mass_bands = coefficients(false);
+        self.damping_bands = coefficients(true);
     }
 
     /// The same rod with lumped (diagonal, row-sum) mass and damping matrices instead of the
@@ -285,29 +292,17 @@ impl Rod {
 
     /// `v^T M v / 2`.
     pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
-        0.5 * self.pattern_form(v, false)
+        0.5 * self.mass_bands.form(v)
     }
 
     /// `v^T C v` (power dissipated by the damping).
     pub fn dissipation_rate(&self, v: &[f64]) -> f64 {
-        self.pattern_form(v, true)
+        self.damping_bands.form(v)
     }
 
-    /// `v^T M v` (or `v^T C v`), element by element.
-    fn pattern_form(&self, v: &[f64], damping: bool) -> f64 {
-        let mut p = 0.0;
-        for (el, m) in self.inertia.iter().enumerate() {
-            let c = m.coefficients(damping);
-            for k in 0..3 {
-                let (a, b) = (v[3 * el + k], v[3 * el + 3 + k]);
-                p += if self.lumped {
-                    3.0 * c[k] * (a * a + b * b)
-                } else {
-                    2.0 * c[k] * (a * a + a * b + b * b)
-                };
-            }
-        }
-        p
+    /// `a M + c C` as bands (the constant part of the midpoint rule's Jacobian).
+    pub fn mass_and_damping_bands(&self, a: f64, c: f64) -> Bands {
+        self.mass_bands.combined(a, &self.damping_bands, c)
     }
 
     /// The point at arc length `s` (clamped to the rod).
@@ -389,51 +384,6 @@ impl Rod {
     /// The constrained dofs in increasing order.
     pub fn constrained(&self) -> &[usize] {
         &self.constrained
-    }
-}
-
-/// A consistent (or lumped) mass or damping matrix as two bands of the dof vector: the
-/// diagonal, and the coupling of each dof with the same dof of the next node (the matrix is
-/// symmetric, so that band is also the one below). Element `e` adds `[[2 c, c], [c, 2 c]]`
-/// per dof kind (`[[3 c, 0], [0, 3 c]]` lumped), `c` its coefficient.
-#[derive(Clone, Debug, Default)]
-struct Bands {
-    diagonal: Vec<f64>,
-    off: Vec<f64>,
-}
-
-impl Bands {
-    fn new(inertia: &[ElementInertia], damping: bool, lumped: bool) -> Bands {
-        let dofs = 3 * (inertia.len() + 1);
-        let mut bands = Bands {
-            diagonal: vec![0.0; dofs],
-            off: vec![0.0; dofs.saturating_sub(3)],
-        };
-        let (own, shared) = if lumped { (3.0, 0.0) } else { (2.0, 1.0) };
-        for (e, m) in inertia.iter().enumerate() {
-            let c = m.coefficients(damping);
-            for k in 0..3 {
-                bands.diagonal[3 * e + k] += own * c[k];
-                bands.diagonal[3 * e + 3 + k] += own * c[k];
-                bands.off[3 * e + k] += shared * c[k];
-            }
-        }
-        bands
-    }
-
-    /// `out += scale * P x`.
-    fn add_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
-        // Three passes the compiler vectorizes: the diagonal, the band above, the band below.
-        let n = out.len();
-        for ((o, d), x) in out.iter_mut().zip(&self.diagonal).zip(x) {
-            *o += scale * (d * x);
-        }
-        for ((o, c), x) in out[..n - 3].iter_mut().zip(&self.off).zip(&x[3..]) {
-            *o += scale * (c * x);
-        }
-        for ((o, c), x) in out[3..].iter_mut().zip(&self.off).zip(&x[..n - 3]) {
-            *o += scale * (c * x);
-        }
     }
 }
 

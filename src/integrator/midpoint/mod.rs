@@ -12,14 +12,16 @@
 //! the rotation of the mid configuration carries `cos(dw/2)`, and `tan` reconciles them).
 //! Newton uses the midpoint Jacobian (exact up to `O(du)`), so it converges fast but linearly.
 //! All buffers live in [`Midpoint`]: a step allocates nothing.
+mod residual;
+
 use super::newton::{
-    chord_correction, inf_norm, newton_correction, NewtonFailure, NewtonSettings, NewtonStats,
+    chord_correction, newton_correction, NewtonFailure, NewtonSettings, NewtonStats,
 };
 use super::tangent_map::TangentMap;
-use crate::model::element::cayley;
-use crate::model::rod::ROTATION;
+use crate::model::bands::Bands;
 use crate::model::{LoadSet, Rod};
 use crate::solver::BlockTridiagonal;
+use residual::{motion, Tangent};
 use serde::{Deserialize, Serialize};
 
 /// Displacements and velocities of every dof (constrained ones included).
@@ -52,17 +54,6 @@ pub enum Scheme {
     EnergyMomentum,
 }
 
-/// The increment that the velocities average over a step: `du` itself, except for rotations in
-/// the energy-momentum scheme, whose angular velocity is `2 tan(dw / 2) / dt` (Cayley): with it
-/// the discrete gradient conserves angular momentum exactly (see `Element::discrete_gradient`).
-fn motion(scheme: Scheme, dof: usize, du: f64) -> f64 {
-    if scheme == Scheme::EnergyMomentum && dof % 3 == ROTATION {
-        cayley(du)
-    } else {
-        du
-    }
-}
-
 /// A chord correction (old factorization) is kept, and the factorization reused, when it is at
 /// most this fraction of the correction before it: it costs about a third of a Newton
 /// correction (no tangent, no factorization) and must gain at least two decades for that.
@@ -92,16 +83,6 @@ fn error_after(c: f64, previous: Option<f64>) -> f64 {
     }
 }
 
-/// What a residual evaluation computes with the tangent stiffness.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Tangent {
-    Skip,
-    /// The Jacobian, into `jac`, for a Newton correction.
-    Iteration,
-    /// The element tangents, kept for the tangent map (see [`TangentMap`]).
-    Elements,
-}
-
 #[derive(Clone, Debug)]
 pub struct Midpoint {
     pub settings: NewtonSettings,
@@ -117,16 +98,19 @@ pub struct Midpoint {
     /// The Jacobian at the last chord correction's iterate, where the tangent map's
     /// refinement cannot be trusted ([`TangentMap::refine`]).
     linear: BlockTridiagonal,
-    /// `2/dt^2 M + C/dt` for `dynamic_dt`: the constant part of the Jacobian.
+    /// `2/dt^2 M + C/dt` for `dynamic_dt`: the constant part of the Jacobian, as blocks and as
+    /// bands (for products).
     dynamic_part: BlockTridiagonal,
+    dynamic_bands: Bands,
     dynamic_dt: f64,
     du: Vec<f64>,
-    /// The state at which the residual was last evaluated; after a step, its increment.
+    /// The state at which the residual was last evaluated.
     u_mid: Vec<f64>,
-    /// Scratch: the inertia bracket of a residual evaluation.
+    /// Scratch: the energy-momentum scheme's inertia bracket.
     bracket: Vec<f64>,
     residual: Vec<f64>,
-    inertia: Vec<f64>,
+    /// The residual's part that is known before the iteration: `-2/dt M v_n - f_ext(t_mid)`.
+    known: Vec<f64>,
     /// Held dofs whose rows of the equation of motion each step keeps, and those rows.
     held: Vec<usize>,
     held_rows: Vec<f64>,
@@ -145,12 +129,13 @@ impl Midpoint {
             tangents: TangentMap::default(),
             linear: BlockTridiagonal::new(rod.nodes()),
             dynamic_part: BlockTridiagonal::new(rod.nodes()),
+            dynamic_bands: Bands::default(),
             dynamic_dt: f64::NAN,
             du: vec![0.0; n],
             u_mid: vec![0.0; n],
             bracket: vec![0.0; n],
             residual: vec![0.0; n],
-            inertia: vec![0.0; n],
+            known: vec![0.0; n],
             held: Vec::new(),
             held_rows: Vec::new(),
             held_stencils: Vec::new(),
@@ -207,28 +192,7 @@ impl Midpoint {
             self.du.len(),
             "a Midpoint serves the rod it was made for"
         );
-        let t_mid = t_n + 0.5 * dt;
-        if self.dynamic_dt != dt {
-            self.dynamic_part.set_zero();
-            rod.add_mass(&mut self.dynamic_part, 2.0 / (dt * dt));
-            rod.add_damping(&mut self.dynamic_part, 1.0 / dt);
-            self.dynamic_dt = dt;
-            for (stencil, &dof) in self.held_stencils.iter_mut().zip(&self.held) {
-                *stencil = self.dynamic_part.row_stencil(dof);
-            }
-        }
-        // Predictor: constant velocity.
-        for (d, v) in self.du.iter_mut().zip(&state.v) {
-            *d = dt * v;
-        }
-        rod.zero_constrained(&mut self.du);
-        for &(dof, increment) in prescribed {
-            self.du[dof] = increment;
-        }
-        // The inertia term's known part, -2/dt v_n.
-        for (m, v) in self.inertia.iter_mut().zip(&state.v) {
-            *m = -2.0 / dt * v;
-        }
+        self.prepare(rod, loads, state, t_n, dt, prescribed);
         let mut stats = NewtonStats::default();
         let tangents = self.tangents.count() > 0;
         debug_assert!(
@@ -251,19 +215,16 @@ impl Midpoint {
                 } else {
                     Tangent::Skip
                 };
-                self.residual(rod, loads, state, t_mid, dt, tangent);
-                let residual_norm = chord_correction(rod, &self.jac, &mut self.residual).ok_or(
-                    NewtonFailure::NonFinite {
-                        iteration: stats.iterations,
-                    },
-                )?;
-                let chord = inf_norm(&self.residual);
+                self.residual(rod, state, dt, tangent);
+                let (residual_norm, chord) = chord_correction(rod, &self.jac, &mut self.residual)
+                    .ok_or(NewtonFailure::NonFinite {
+                    iteration: stats.iterations,
+                })?;
                 if chord <= CHORD_CONTRACTION * last {
-                    let converged = self.settings.converged(
-                        self.error_after(chord, previous, true),
-                        self.increment_after_update(),
-                    );
-                    self.apply_correction();
+                    let increment = self.apply_correction();
+                    let converged = self
+                        .settings
+                        .converged(self.error_after(chord, previous, true), increment);
                     stats.record(residual_norm, chord);
                     if converged {
                         ended_on_newton = false;
@@ -274,19 +235,19 @@ impl Midpoint {
                     continue;
                 }
             }
-            self.residual(rod, loads, state, t_mid, dt, Tangent::Iteration);
+            self.residual(rod, state, dt, Tangent::Iteration);
             let (residual_norm, correction) =
                 newton_correction(rod, &mut self.jac, &mut self.residual, stats.iterations)?;
             if tangents {
                 self.tangents.solve(&self.jac);
             }
-            self.apply_correction();
+            let increment = self.apply_correction();
             stats.record(residual_norm, correction);
             stats.factorizations += 1;
-            if self.settings.converged(
-                self.error_after(correction, previous, false),
-                inf_norm(&self.du),
-            ) {
+            if self
+                .settings
+                .converged(self.error_after(correction, previous, false), increment)
+            {
                 ended_on_newton = true;
                 break;
             }
@@ -306,11 +267,20 @@ impl Midpoint {
                 stats.tangent_factorizations += 1;
             }
         }
-        self.u_mid.copy_from_slice(&self.du);
         let dofs = state.u.iter_mut().zip(state.v.iter_mut()).zip(&self.du);
-        for (i, ((u, v), d)) in dofs.enumerate() {
-            *u += d;
-            *v = 2.0 * motion(self.scheme, i, *d) / dt - *v;
+        match self.scheme {
+            Scheme::Midpoint => {
+                for ((u, v), d) in dofs {
+                    *u += d;
+                    *v = 2.0 * d / dt - *v;
+                }
+            }
+            Scheme::EnergyMomentum => {
+                for (i, ((u, v), d)) in dofs.enumerate() {
+                    *u += d;
+                    *v = 2.0 * motion(self.scheme, i, *d) / dt - *v;
+                }
+            }
         }
         Ok(stats)
     }
@@ -357,86 +327,25 @@ impl Midpoint {
         self.tangents.reserve(count, rod);
     }
 
-    /// `|du + correction|_inf` with the correction in `residual`.
-    fn increment_after_update(&self) -> f64 {
-        (self.du.iter().zip(&self.residual)).fold(0.0, |m, (d, r)| m.max((d + r).abs()))
-    }
-
-    fn apply_correction(&mut self) {
+    /// Adds the correction in `residual` to `du`; returns `|du|_inf` after it (NaN-aware).
+    fn apply_correction(&mut self) -> f64 {
+        let (mut largest, mut nan) = (0.0f64, false);
         for (d, r) in self.du.iter_mut().zip(&self.residual) {
             *d += r;
+            let a = d.abs();
+            largest = if a > largest { a } else { largest };
+            nan |= a.is_nan();
         }
-    }
-
-    /// The residual `R(du)` at the current `du` into `residual` and the Jacobian where
-    /// `tangent` says (constraints not yet applied).
-    fn residual(
-        &mut self,
-        rod: &Rod,
-        loads: &LoadSet,
-        state: &DynamicState,
-        t_mid: f64,
-        dt: f64,
-        tangent: Tangent,
-    ) {
-        let mut jac = (tangent == Tangent::Iteration).then_some(&mut self.jac);
-        if let Some(j) = jac.as_deref_mut() {
-            j.copy_from(&self.dynamic_part);
-        }
-        match self.scheme {
-            Scheme::Midpoint => {
-                for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
-                    *um = u + 0.5 * d;
-                }
-                if let Some(jac) = jac {
-                    rod.internal_force_and_tangent(&self.u_mid, &mut self.residual, jac, 0.5);
-                } else if tangent == Tangent::Elements {
-                    rod.internal_force_and_element_tangents(
-                        &self.u_mid,
-                        &mut self.residual,
-                        self.tangents.element_tangents(),
-                    );
-                } else {
-                    rod.internal_force(&self.u_mid, &mut self.residual);
-                }
-            }
-            Scheme::EnergyMomentum => {
-                // `u_mid` holds the end state u_n + du here.
-                for ((um, u), d) in self.u_mid.iter_mut().zip(&state.u).zip(&self.du) {
-                    *um = u + d;
-                }
-                if let Some(jac) = jac {
-                    rod.discrete_gradient_and_tangent(
-                        &state.u,
-                        &self.u_mid,
-                        &mut self.residual,
-                        jac,
-                        0.5,
-                    );
-                } else {
-                    rod.discrete_gradient(&state.u, &self.u_mid, &mut self.residual);
-                }
-            }
-        }
-        // M (a du - 2/dt v_n). The energy-momentum scheme moves rotations by their Cayley
-        // increment (see `motion`).
-        let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
-        let scheme = self.scheme;
-        for (i, ((s, d), m)) in
-            (self.bracket.iter_mut().zip(&self.du).zip(&self.inertia)).enumerate()
-        {
-            *s = a * motion(scheme, i, *d) + m;
-        }
-        rod.add_mass_and_damping_times((&self.bracket, 1.0), (&self.du, c), &mut self.residual);
-        loads.add_to(t_mid, &mut self.residual, -1.0);
-        for (row, &dof) in self.held_rows.iter_mut().zip(&self.held) {
-            *row = self.residual[dof];
+        if nan {
+            f64::NAN
+        } else {
+            largest
         }
     }
 
     /// The displacement increment `du` of the last successful step.
     pub fn last_increment(&self) -> &[f64] {
-        &self.u_mid
+        &self.du
     }
 
     /// Brings the kept rows from the last residual evaluation to the converged step: adds the
