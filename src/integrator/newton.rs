@@ -148,34 +148,44 @@ pub(crate) fn chord_correction(
 
 /// Negates `x` and returns its largest magnitude (NaN if it holds a NaN): one pass.
 fn negate_and_norm(x: &mut [f64]) -> f64 {
-    let (mut largest, mut nan) = (0.0f64, false);
+    let mut norm = MaxMagnitude::default();
     for v in x.iter_mut() {
         *v = -*v;
-        let a = v.abs();
-        largest = if a > largest { a } else { largest };
-        nan |= a.is_nan();
+        norm.add(*v);
     }
-    if nan {
-        f64::NAN
-    } else {
-        largest
+    norm.value()
+}
+
+/// The largest magnitude of the values added, NaN if one is NaN: the running maximum and the
+/// NaN test kept apart, so that a loop over a slice vectorizes.
+#[derive(Default)]
+pub(crate) struct MaxMagnitude {
+    largest: f64,
+    nan: bool,
+}
+
+impl MaxMagnitude {
+    #[inline]
+    pub(crate) fn add(&mut self, v: f64) {
+        let a = v.abs();
+        self.largest = if a > self.largest { a } else { self.largest };
+        self.nan |= a.is_nan();
+    }
+
+    pub(crate) fn value(&self) -> f64 {
+        if self.nan {
+            f64::NAN
+        } else {
+            self.largest
+        }
     }
 }
 
-/// The largest magnitude in `x`; NaN if `x` holds a NaN. (Max and NaN test kept apart, in
-/// a loop the compiler vectorizes: this runs several times per step.)
+/// The largest magnitude in `x`; NaN if `x` holds a NaN.
 pub(crate) fn inf_norm(x: &[f64]) -> f64 {
-    let (mut largest, mut nan) = (0.0f64, false);
-    for v in x {
-        let a = v.abs();
-        largest = if a > largest { a } else { largest };
-        nan |= a.is_nan();
-    }
-    if nan {
-        f64::NAN
-    } else {
-        largest
-    }
+    let mut norm = MaxMagnitude::default();
+    x.iter().for_each(|&v| norm.add(v));
+    norm.value()
 }
 
 #[cfg(test)]

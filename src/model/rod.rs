@@ -300,9 +300,18 @@ impl Rod {
         self.damping_bands.form(v)
     }
 
-    /// `a M + c C` as bands (the constant part of the midpoint rule's Jacobian).
-    pub fn mass_and_damping_bands(&self, a: f64, c: f64) -> Bands {
-        self.mass_bands.combined(a, &self.damping_bands, c)
+    /// `out += M (a x + y) + c C x + z`: the linear part of the midpoint rule's residual,
+    /// with the inertia bracket formed before the product (see [`Bands::add_bracket_times`]).
+    pub fn add_bracket_times(
+        &self,
+        (a, x): (f64, &[f64]),
+        y: &[f64],
+        c: f64,
+        z: &[f64],
+        out: &mut [f64],
+    ) {
+        self.mass_bands
+            .add_bracket_times(&self.damping_bands, (a, x), y, c, z, out);
     }
 
     /// The point at arc length `s` (clamped to the rod).

@@ -15,10 +15,9 @@
 mod residual;
 
 use super::newton::{
-    chord_correction, newton_correction, NewtonFailure, NewtonSettings, NewtonStats,
+    chord_correction, newton_correction, MaxMagnitude, NewtonFailure, NewtonSettings, NewtonStats,
 };
 use super::tangent_map::TangentMap;
-use crate::model::bands::Bands;
 use crate::model::{LoadSet, Rod};
 use crate::solver::BlockTridiagonal;
 use residual::{motion, Tangent};
@@ -98,10 +97,8 @@ pub struct Midpoint {
     /// The Jacobian at the last chord correction's iterate, where the tangent map's
     /// refinement cannot be trusted ([`TangentMap::refine`]).
     linear: BlockTridiagonal,
-    /// `2/dt^2 M + C/dt` for `dynamic_dt`: the constant part of the Jacobian, as blocks and as
-    /// bands (for products).
+    /// `2/dt^2 M + C/dt` for `dynamic_dt`: the constant part of the Jacobian.
     dynamic_part: BlockTridiagonal,
-    dynamic_bands: Bands,
     dynamic_dt: f64,
     du: Vec<f64>,
     /// The state at which the residual was last evaluated.
@@ -109,8 +106,10 @@ pub struct Midpoint {
     /// Scratch: the energy-momentum scheme's inertia bracket.
     bracket: Vec<f64>,
     residual: Vec<f64>,
-    /// The residual's part that is known before the iteration: `-2/dt M v_n - f_ext(t_mid)`.
-    known: Vec<f64>,
+    /// What the residual's linear part takes from the start of the step: the inertia of the
+    /// old velocity in the bracket, `-2/dt v_n`, and the loads at the midpoint, `-f_ext`.
+    inertia: Vec<f64>,
+    load: Vec<f64>,
     /// Held dofs whose rows of the equation of motion each step keeps, and those rows.
     held: Vec<usize>,
     held_rows: Vec<f64>,
@@ -129,13 +128,13 @@ impl Midpoint {
             tangents: TangentMap::default(),
             linear: BlockTridiagonal::new(rod.nodes()),
             dynamic_part: BlockTridiagonal::new(rod.nodes()),
-            dynamic_bands: Bands::default(),
             dynamic_dt: f64::NAN,
             du: vec![0.0; n],
             u_mid: vec![0.0; n],
             bracket: vec![0.0; n],
             residual: vec![0.0; n],
-            known: vec![0.0; n],
+            inertia: vec![0.0; n],
+            load: vec![0.0; n],
             held: Vec::new(),
             held_rows: Vec::new(),
             held_stencils: Vec::new(),
@@ -329,18 +328,12 @@ impl Midpoint {
 
     /// Adds the correction in `residual` to `du`; returns `|du|_inf` after it (NaN-aware).
     fn apply_correction(&mut self) -> f64 {
-        let (mut largest, mut nan) = (0.0f64, false);
+        let mut norm = MaxMagnitude::default();
         for (d, r) in self.du.iter_mut().zip(&self.residual) {
             *d += r;
-            let a = d.abs();
-            largest = if a > largest { a } else { largest };
-            nan |= a.is_nan();
+            norm.add(*d);
         }
-        if nan {
-            f64::NAN
-        } else {
-            largest
-        }
+        norm.value()
     }
 
     /// The displacement increment `du` of the last successful step.

@@ -1,7 +1,7 @@
-//! The midpoint rule's residual: its part known before the iteration (inertia of the old
-//! velocity, loads at the step's midpoint), assembled once per step, and its evaluation at an
+//! The midpoint rule's residual: what it takes from the start of the step (inertia of the old
+//! velocity, loads at the step's midpoint), set once per step, and its evaluation at an
 //! iterate (internal force, optionally with the Jacobian or the element tangents, plus the
-//! linear part `(2/dt^2 M + C/dt) du` as bands).
+//! linear part `M (2/dt^2 du - 2/dt v_n) + C du/dt - f_ext` in one banded pass).
 use super::{DynamicState, Midpoint, Scheme};
 use crate::model::element::cayley;
 use crate::model::rod::ROTATION;
@@ -30,8 +30,8 @@ pub(super) enum Tangent {
 
 impl Midpoint {
     /// Before the iteration of a step of size `dt` from `t_n`: the constant part of the
-    /// Jacobian (when `dt` changed), the residual's known part
-    /// `-2/dt M v_n - f_ext(t_n + dt/2)` and the predictor (constant velocity; held dofs by
+    /// Jacobian (when `dt` changed), what the residual takes from the start of the step
+    /// (`-2/dt v_n`, `-f_ext(t_n + dt/2)`) and the predictor (constant velocity; held dofs by
     /// their `prescribed` increments).
     pub(super) fn prepare(
         &mut self,
@@ -47,17 +47,16 @@ impl Midpoint {
             self.dynamic_part.set_zero();
             rod.add_mass(&mut self.dynamic_part, a);
             rod.add_damping(&mut self.dynamic_part, c);
-            self.dynamic_bands = rod.mass_and_damping_bands(a, c);
             self.dynamic_dt = dt;
             for (stencil, &dof) in self.held_stencils.iter_mut().zip(&self.held) {
                 *stencil = self.dynamic_part.row_stencil(dof);
             }
         }
-        self.known.fill(0.0);
-        rod.add_mass_times(&state.v, &mut self.known, -2.0 / dt);
-        loads.add_to(t_n + 0.5 * dt, &mut self.known, -1.0);
-        for (d, v) in self.du.iter_mut().zip(&state.v) {
+        self.load.fill(0.0);
+        loads.add_to(t_n + 0.5 * dt, &mut self.load, -1.0);
+        for ((d, m), v) in self.du.iter_mut().zip(&mut self.inertia).zip(&state.v) {
             *d = dt * v;
+            *m = -2.0 / dt * v;
         }
         rod.zero_constrained(&mut self.du);
         for &(dof, increment) in prescribed {
@@ -88,9 +87,15 @@ impl Midpoint {
                 } else {
                     rod.internal_force(&self.u_mid, &mut self.residual);
                 }
-                // + (2/dt^2 M + C/dt) du - 2/dt M v_n - f_ext.
-                self.dynamic_bands
-                    .add_times_plus(&self.du, &self.known, &mut self.residual);
+                // + M (2/dt^2 du - 2/dt v_n) + C du/dt - f_ext.
+                let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
+                rod.add_bracket_times(
+                    (a, &self.du),
+                    &self.inertia,
+                    c,
+                    &self.load,
+                    &mut self.residual,
+                );
             }
             Scheme::EnergyMomentum => {
                 // `u_mid` holds the end state u_n + du here.
@@ -110,16 +115,17 @@ impl Midpoint {
                 }
                 // Rotations move by their Cayley increment (see `motion`).
                 let a = 2.0 / (dt * dt);
-                for (i, (s, d)) in self.bracket.iter_mut().zip(&self.du).enumerate() {
-                    *s = a * motion(self.scheme, i, *d);
+                let brackets = self.bracket.iter_mut().zip(&self.du).zip(&self.inertia);
+                for (i, ((s, d), m)) in brackets.enumerate() {
+                    *s = a * motion(self.scheme, i, *d) + m;
                 }
                 rod.add_mass_and_damping_times(
                     (&self.bracket, 1.0),
                     (&self.du, 1.0 / dt),
                     &mut self.residual,
                 );
-                for (r, k) in self.residual.iter_mut().zip(&self.known) {
-                    *r += k;
+                for (r, l) in self.residual.iter_mut().zip(&self.load) {
+                    *r += l;
                 }
             }
         }
