@@ -1,5 +1,6 @@
 //! Newton iteration settings, statistics and failures shared by the static and dynamic solvers.
 use crate::model::Rod;
+use crate::solver::vector::{inf_norm, update_and_norm};
 use crate::solver::{BlockTridiagonal, SingularMatrix};
 use std::fmt;
 
@@ -148,57 +149,5 @@ pub(crate) fn chord_correction(
 
 /// Negates `x` and returns its largest magnitude (NaN if it holds a NaN): one pass.
 fn negate_and_norm(x: &mut [f64]) -> f64 {
-    let mut norm = MaxMagnitude::default();
-    for v in x.iter_mut() {
-        *v = -*v;
-        norm.add(*v);
-    }
-    norm.value()
-}
-
-/// The largest magnitude of the values added, NaN if one is NaN: the running maximum and the
-/// NaN test kept apart, so that a loop over a slice vectorizes.
-#[derive(Default)]
-pub(crate) struct MaxMagnitude {
-    largest: f64,
-    nan: bool,
-}
-
-impl MaxMagnitude {
-    #[inline]
-    pub(crate) fn add(&mut self, v: f64) {
-        let a = v.abs();
-        self.largest = if a > self.largest { a } else { self.largest };
-        self.nan |= a.is_nan();
-    }
-
-    pub(crate) fn value(&self) -> f64 {
-        if self.nan {
-            f64::NAN
-        } else {
-            self.largest
-        }
-    }
-}
-
-/// The largest magnitude in `x`; NaN if `x` holds a NaN.
-pub(crate) fn inf_norm(x: &[f64]) -> f64 {
-    let mut norm = MaxMagnitude::default();
-    x.iter().for_each(|&v| norm.add(v));
-    norm.value()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn inf_norm_is_the_largest_magnitude_and_nan_when_a_nan_is_there() {
-        assert_eq!(inf_norm(&[]), 0.0);
-        assert_eq!(inf_norm(&[1.0, -3.5, 2.0]), 3.5);
-        assert_eq!(inf_norm(&[1.0, f64::NEG_INFINITY]), f64::INFINITY);
-        assert!(inf_norm(&[1.0, f64::NAN, 5.0]).is_nan());
-        assert!(inf_norm(&[f64::NAN, f64::INFINITY]).is_nan());
-        assert!(inf_norm(&[2.0, -7.0, f64::NAN]).is_nan());
-    }
+    update_and_norm(x, |_, v| -v)
 }

@@ -21,6 +21,7 @@
 //! independent of how sub-steps are grouped into communication steps.
 use super::tangent_map::TangentMap;
 use crate::model::Rod;
+use crate::solver::vector::dot;
 
 /// The most exponents one simulation estimates.
 pub const MAX_EXPONENTS: usize = 4;
@@ -81,9 +82,7 @@ fn weighted_norm(du: &[f64], dv: &[f64], tau: f64) -> f64 {
 }
 
 fn weighted_dot(au: &[f64], av: &[f64], bu: &[f64], bv: &[f64], tau: f64) -> f64 {
-    let u: f64 = au.iter().zip(bu).map(|(a, b)| a * b).sum();
-    let v: f64 = av.iter().zip(bv).map(|(a, b)| a * b).sum();
-    u + tau * tau * v
+    dot(au, bu) + tau * tau * dot(av, bv)
 }
 
 impl Lyapunov {
@@ -196,7 +195,8 @@ impl Lyapunov {
                 v.iter_mut().zip(qv).for_each(|(x, q)| *x -= p * q);
             }
             let r = weighted_norm(u, v, self.tau);
-            u.iter_mut().chain(v.iter_mut()).for_each(|x| *x /= r);
+            let inverse = 1.0 / r;
+            u.iter_mut().chain(v.iter_mut()).for_each(|x| *x *= inverse);
             if book {
                 self.log_growth[j] += r.ln();
             }

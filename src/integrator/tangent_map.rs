@@ -20,9 +20,9 @@
 //! rejected chord, `J1` is assembled from the kept element tangents and factored: the exact
 //! solve. (When the iteration ends on a Newton correction, `J0` is already at an iterate
 //! within the tolerance and the first solve is exact.)
-use super::newton::inf_norm;
 use crate::model::element::ElementTangent;
 use crate::model::Rod;
+use crate::solver::vector::inf_norm;
 use crate::solver::{BlockTridiagonal, SingularMatrix};
 
 /// The relative error of a tangent solution that the refinement must estimate to leave: the

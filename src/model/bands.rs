@@ -78,11 +78,17 @@ impl Bands {
     /// `x^T P x`.
     pub fn form(&self, x: &[f64]) -> f64 {
         let n = x.len();
-        let diagonal: f64 = (self.diagonal.iter().zip(x)).map(|(d, x)| d * x * x).sum();
-        let off: f64 = (self.off.iter().zip(&x[..n - 3]).zip(&x[3..]))
-            .map(|((c, a), b)| c * a * b)
-            .sum();
-        diagonal + 2.0 * off
+        let mut px = [0.0; 3];
+        // x_j (d_j x_j + 2 c_j x_(j+3)), accumulated per dof kind (three independent sums).
+        for (j, (d, xj)) in self.diagonal.iter().zip(x).enumerate() {
+            let next = if j + 3 < n {
+                2.0 * self.off[j] * x[j + 3]
+            } else {
+                0.0
+            };
+            px[j % 3] += xj * (d * xj + next);
+        }
+        px[0] + px[1] + px[2]
     }
 }
 

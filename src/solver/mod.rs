@@ -1,4 +1,6 @@
-//! Linear solvers: the block-tridiagonal system of a rod (3x3 blocks per node).
+//! Linear solvers: the block-tridiagonal system of a rod (3x3 blocks per node), and the
+//! reductions over dof vectors that the time steps use.
 pub mod block_tridiagonal;
+pub mod vector;
 
 pub use block_tridiagonal::{BlockTridiagonal, SingularMatrix};

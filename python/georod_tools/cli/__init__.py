@@ -17,30 +17,41 @@ FMU's message.
 from __future__ import annotations
 
 import argparse
+import importlib
 import sys
 from collections.abc import Sequence
 
 PROG = "georod-tools"
+#: The subcommands, in the order `--help` lists them (modules of this package).
+COMMANDS = ("case", "sweep", "study", "benchmark", "animate", "demo")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    from georod_tools.cli import animate, benchmark, case, demo, study, sweep
-
+def build_parser(argv: Sequence[str] = ()) -> argparse.ArgumentParser:
+    """The parser. Only the subcommand named in `argv` gets its options (all of them when
+    `argv` names none): the studies' and benchmarks' options import their studies, with
+    matplotlib and Dask, which would add a second to every command; the others are listed
+    with their help line."""
+    command = next((a for a in argv if not a.startswith("-")), None)
+    full = command not in COMMANDS
     parser = argparse.ArgumentParser(
         prog=PROG,
         description="Analyses of the georod FMUs: Poincaré sections, phase portraits, "
         "bifurcation diagrams, Lyapunov exponents, studies, benchmarks, animations.",
     )
     sub = parser.add_subparsers(dest="command", required=True)
-    for module in (case, sweep, study, benchmark, animate, demo):
-        module.add_parser(sub)
+    for name in COMMANDS:
+        module = importlib.import_module(f"georod_tools.cli.{name}")
+        if full or name == command:
+            module.add_parser(sub)
+        else:
+            sub.add_parser(name, help=module.HELP)
     return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
-    parser = build_parser()
+    parser = build_parser(argv)
     args = parser.parse_args(argv)
     try:
         return int(args.run(args._parser, args, argv))

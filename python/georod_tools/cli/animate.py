@@ -20,13 +20,14 @@ from pathlib import Path
 from georod_tools.cli.args import name_value, positive_float, positive_int
 
 DEFAULT_OUT = Path("out") / "animate"
-DESCRIPTION = "Animate the deformed rod of an FMU from its shape outputs (GIF)."
+#: The line `georod-tools --help` shows.
+HELP = "Animate the deformed rod of an FMU from its shape outputs (GIF)."
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "animate",
-        help=DESCRIPTION,
+        help=HELP,
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

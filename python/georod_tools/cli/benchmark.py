@@ -33,10 +33,14 @@ def _workers(text: str) -> tuple[int, ...]:
     return got
 
 
+#: The line `georod-tools --help` shows.
+HELP = "benchmarks: precision (vs Exudyn), lyapunov (methods)"
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "benchmark",
-        help="benchmarks: precision (vs Exudyn), lyapunov (methods)",
+        help=HELP,
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -209,10 +209,14 @@ def _fmt(x: float) -> str:
     return f"{x:g}".replace("+", "")
 
 
+#: The line `georod-tools --help` shows.
+HELP = "one run: Poincaré section, phase portrait, time plot, Lyapunov exponent"
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "case",
-        help="one run: Poincaré section, phase portrait, time plot, Lyapunov exponent",
+        help=HELP,
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -15,10 +15,14 @@ from georod_tools.cli.args import add_output_options, int_range, nonnegative_int
 DEFAULT_OUT = Path("out") / "demo"
 
 
+#: The line `georod-tools --help` shows.
+HELP = "the BuckledBeam FMU end to end (plots, sections, summary)"
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "demo",
-        help="the BuckledBeam FMU end to end (plots, sections, summary)",
+        help=HELP,
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -24,10 +24,14 @@ DEFAULT_OUT = Path("out") / "study"
 DOCS = REPO_ROOT / "docs" / "figures"
 
 
+#: The line `georod-tools --help` shows.
+HELP = "the long studies: paper, sensitivity, arches, arch-path, stability"
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "study",
-        help="the long studies: paper, sensitivity, arches, arch-path, stability",
+        help=HELP,
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -83,10 +83,14 @@ def _stem(base: CaseConfig, args: argparse.Namespace) -> str:
     )
 
 
+#: The line `georod-tools --help` shows.
+HELP = "bifurcation diagram over F, Omega or any FMU Real parameter (Dask, resumable)"
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser(
         "sweep",
-        help="bifurcation diagram over F, Omega or any FMU Real parameter (Dask, resumable)",
+        help=HELP,
         description=__doc__,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -27,8 +27,9 @@ pub use critical::{
 };
 pub use equilibria::{equilibria_at_load, Equilibrium};
 
-use super::newton::{inf_norm, NewtonSettings};
+use super::newton::NewtonSettings;
 use crate::model::Rod;
+use crate::solver::vector::inf_norm;
 use crate::solver::BlockTridiagonal;
 
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -15,10 +15,11 @@
 mod residual;
 
 use super::newton::{
-    chord_correction, newton_correction, MaxMagnitude, NewtonFailure, NewtonSettings, NewtonStats,
+    chord_correction, newton_correction, NewtonFailure, NewtonSettings, NewtonStats,
 };
 use super::tangent_map::TangentMap;
 use crate::model::{LoadSet, Rod};
+use crate::solver::vector::update_and_norm;
 use crate::solver::BlockTridiagonal;
 use residual::{motion, Tangent};
 use serde::{Deserialize, Serialize};
@@ -328,12 +329,8 @@ impl Midpoint {
 
     /// Adds the correction in `residual` to `du`; returns `|du|_inf` after it (NaN-aware).
     fn apply_correction(&mut self) -> f64 {
-        let mut norm = MaxMagnitude::default();
-        for (d, r) in self.du.iter_mut().zip(&self.residual) {
-            *d += r;
-            norm.add(*d);
-        }
-        norm.value()
+        let r = &self.residual;
+        update_and_norm(&mut self.du, |i, d| d + r[i])
     }
 
     /// The displacement increment `du` of the last successful step.
