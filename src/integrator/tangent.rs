@@ -42,19 +42,6 @@ pub struct Lyapunov {
     counted_time: f64,
 }
 
-/// Scratch for [`Lyapunov::prepare`] (a vector of `dofs`), kept by the caller so that a
-/// step allocates nothing.
-#[derive(Clone, Debug)]
-pub struct TangentScratch {
-    x: Vec<f64>,
-}
-
-impl TangentScratch {
-    pub fn new(dofs: usize) -> TangentScratch {
-        TangentScratch { x: vec![0.0; dofs] }
-    }
-}
-
 /// A deterministic pseudo-random direction over the free dofs (splitmix64), unit in the norm
 /// with weight `tau`: the same for every run of the same rod.
 pub fn seeded_direction(rod: &Rod, seed: u64, tau: f64) -> (Vec<f64>, Vec<f64>) {
@@ -142,18 +129,16 @@ impl Lyapunov {
     /// Sets the tangent map's systems of the sub-step of size `dt` about to be taken: one per
     /// vector, `rhs = 2 A du + 2/dt M dv = M (4/dt^2 du + 2/dt dv) + C (2/dt du)` (`map` must
     /// have room for [`Lyapunov::count`] of them).
-    pub fn prepare(&self, rod: &Rod, dt: f64, map: &mut TangentMap, scratch: &mut TangentScratch) {
+    pub fn prepare(&self, rod: &Rod, dt: f64, map: &mut TangentMap) {
         let n = self.dofs();
         map.set_count(self.count());
         for j in 0..self.count() {
             let du = &self.du[j * n..(j + 1) * n];
             let dv = &self.dv[j * n..(j + 1) * n];
-            for ((x, u), v) in scratch.x.iter_mut().zip(du).zip(dv) {
-                *x = 4.0 / (dt * dt) * u + 2.0 / dt * v;
-            }
             let rhs = map.rhs_mut(j);
             rhs.fill(0.0);
-            rod.add_mass_and_damping_times((&scratch.x, 1.0), (du, 2.0 / dt), rhs);
+            let bracket = ((4.0 / (dt * dt), du), (2.0 / dt, dv));
+            rod.add_bracket_times(bracket, 2.0 / dt, None, rhs);
             rod.zero_constrained(rhs);
         }
     }

@@ -123,7 +123,7 @@ impl TangentMap {
                 let r = &mut self.scratch;
                 r.copy_from_slice(&self.rhs[range.clone()]);
                 let y = &mut self.solution[range.clone()];
-                rod.add_mass_and_damping_times((y, -a), (y, -c), r);
+                rod.add_bracket_times(((-a, &y[..]), (0.0, &y[..])), -c, None, r);
                 rod.add_tangent_times(&self.tangents, y, r, -0.5);
                 rod.zero_constrained(r);
                 jac.solve_in_place(r);

@@ -300,18 +300,18 @@ impl Rod {
         self.damping_bands.form(v)
     }
 
-    /// `out += M (a x + y) + c C x + z`: the linear part of the midpoint rule's residual,
-    /// with the inertia bracket formed before the product (see [`Bands::add_bracket_times`]).
+    /// `out += M (a x + b y) + c C x + z`: the linear part of the midpoint rule's residual and
+    /// of its tangent map, with the bracket formed before the product (see
+    /// [`Bands::add_bracket_times`]).
     pub fn add_bracket_times(
         &self,
-        (a, x): (f64, &[f64]),
-        y: &[f64],
+        bracket: ((f64, &[f64]), (f64, &[f64])),
         c: f64,
-        z: &[f64],
+        z: Option<&[f64]>,
         out: &mut [f64],
     ) {
         self.mass_bands
-            .add_bracket_times(&self.damping_bands, (a, x), y, c, z, out);
+            .add_bracket_times(&self.damping_bands, bracket, c, z, out);
     }
 
     /// The point at arc length `s` (clamped to the rod).

@@ -3,7 +3,7 @@
 //! kick that twin-trajectory checks use. Neither changes the trajectory of an unkicked run.
 use super::setup::Setup;
 use super::SimError;
-use crate::integrator::tangent::{seeded_direction, Lyapunov, TangentScratch};
+use crate::integrator::tangent::{seeded_direction, Lyapunov};
 use crate::integrator::{DynamicState, Midpoint, Scheme};
 use crate::scene::params::{refuse, LYAPUNOV, LYAPUNOV_ALIGN, LYAPUNOV_START, PERTURBATION};
 use crate::scene::{ParamValues, Scene, Std};
@@ -15,7 +15,6 @@ pub(super) struct Analysis {
     /// The exponents at `t = 0`, for a reset.
     initial: Option<Lyapunov>,
     trial: Option<Lyapunov>,
-    scratch: TangentScratch,
     /// Sub-steps from this time on advance the tangent vectors.
     start: f64,
     /// Weight of the velocities in the norm of tangent vectors and kicks (a time): `1/Omega`
@@ -90,7 +89,6 @@ impl Analysis {
             trial: exponents.clone(),
             initial: exponents.clone(),
             exponents,
-            scratch: TangentScratch::new(if k > 0 { rod.dofs() } else { 0 }),
             start,
             tau,
             perturbation,
@@ -136,7 +134,7 @@ impl Analysis {
     pub fn prepare(&mut self, setup: &Setup, t_n: f64, dt: f64, integrator: &mut Midpoint) {
         let map = integrator.tangent_map_mut();
         match self.trial.as_ref().filter(|_| t_n >= self.start) {
-            Some(t) => t.prepare(&setup.rod, dt, map, &mut self.scratch),
+            Some(t) => t.prepare(&setup.rod, dt, map),
             None => map.set_count(0),
         }
     }

@@ -26,7 +26,9 @@ import argparse
 import sys
 import time
 from collections.abc import Sequence
+from importlib import import_module
 from pathlib import Path
+from threading import Thread
 
 from georod_tools.analysis.case import CaseConfig, CaseResult
 from georod_tools.analysis.failure import CaseFailure
@@ -138,8 +140,10 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
     """Runs (or resumes) the sweep of the command line; returns the exit status."""
     from georod_tools.analysis.sweep import sweep, sweep_values
     from georod_tools.report.case_files import write_sweep_csv
-    from georod_tools.report.figures import plot_sweep
 
+    # The figure's modules (matplotlib: half a second) load while the cases run, when this
+    # process only waits; importing is thread-safe, the plot below waits for it if need be.
+    Thread(target=import_module, args=("georod_tools.report.figures",), daemon=True).start()
     check_case_options(parser, args)
     if args.param in ("elements", "substeps"):
         parser.error(f"--param {args.param}: sweep a Real parameter")
@@ -217,6 +221,8 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
     failures = [g for g in got if isinstance(g, CaseFailure)]
     stem = _stem(base, args)
     threshold = None if args.no_lyapunov else args.chaos_threshold
+    from georod_tools.report.figures import plot_sweep
+
     png = plot_sweep(args.param, results, out / f"{stem}.png", threshold, failures)
     summary, samples = write_sweep_csv(
         args.param, results, out / f"{stem}.csv", failures, wall_time=False

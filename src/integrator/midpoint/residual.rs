@@ -89,13 +89,8 @@ impl Midpoint {
                 }
                 // + M (2/dt^2 du - 2/dt v_n) + C du/dt - f_ext.
                 let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
-                rod.add_bracket_times(
-                    (a, &self.du),
-                    &self.inertia,
-                    c,
-                    &self.load,
-                    &mut self.residual,
-                );
+                let bracket = ((a, &self.du[..]), (1.0, &self.inertia[..]));
+                rod.add_bracket_times(bracket, c, Some(&self.load), &mut self.residual);
             }
             Scheme::EnergyMomentum => {
                 // `u_mid` holds the end state u_n + du here.
