@@ -124,7 +124,7 @@ pub(crate) fn newton_correction(
         return Err(NewtonFailure::NonFinite { iteration });
     }
     jac.constrain(rod.constrained());
-    jac.factor()?;
+    jac.factor_symmetric()?;
     jac.solve_in_place(residual);
     Ok((residual_norm, inf_norm(residual)))
 }

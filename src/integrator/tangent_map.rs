@@ -161,7 +161,7 @@ impl TangentMap {
             jac.add_element(e, ke, 0.5);
         }
         jac.constrain(rod.constrained());
-        jac.factor()?;
+        jac.factor_symmetric()?;
         self.solve(jac);
         Ok(())
     }
