@@ -2,6 +2,7 @@
 //! diagonal and one band coupling each dof with the same dof of the next node (distance 3), so
 //! products and quadratic forms are a few passes over the dof vector that the compiler
 //! vectorizes.
+use crate::solver::vector::sum;
 
 /// `P = diag(diagonal) + the band `off` at +3 and -3`.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -81,20 +82,12 @@ impl Bands {
         pass(&mut out[3..], &m.off, &d.off, &x[..n - 3], &y[..n - 3]);
     }
 
-    /// `x^T P x`.
+    /// `x^T P x`: `x . (diagonal x) + 2 x . (off x shifted)`.
     pub fn form(&self, x: &[f64]) -> f64 {
         let n = x.len();
-        let mut px = [0.0; 3];
-        // x_j (d_j x_j + 2 c_j x_(j+3)), accumulated per dof kind (three independent sums).
-        for (j, (d, xj)) in self.diagonal.iter().zip(x).enumerate() {
-            let next = if j + 3 < n {
-                2.0 * self.off[j] * x[j + 3]
-            } else {
-                0.0
-            };
-            px[j % 3] += xj * (d * xj + next);
-        }
-        px[0] + px[1] + px[2]
+        let diagonal = sum(n, |j| self.diagonal[j] * x[j] * x[j]);
+        let off = sum(n - 3, |j| self.off[j] * x[j] * x[j + 3]);
+        diagonal + 2.0 * off
     }
 }
 

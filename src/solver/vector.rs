@@ -42,16 +42,22 @@ pub fn update_and_norm(x: &mut [f64], mut update: impl FnMut(usize, f64) -> f64)
 
 /// `sum a_i b_i`.
 pub fn dot(a: &[f64], b: &[f64]) -> f64 {
-    debug_assert_eq!(a.len(), b.len());
+    let b = &b[..a.len()];
+    sum(a.len(), |i| a[i] * b[i])
+}
+
+/// `sum term(i)` over `i` in `0..n`.
+#[inline]
+pub fn sum(n: usize, term: impl Fn(usize) -> f64) -> f64 {
     let mut sums = [0.0; LANES];
-    let (mut ca, mut cb) = (a.chunks_exact(LANES), b.chunks_exact(LANES));
-    for (x, y) in (&mut ca).zip(&mut cb) {
-        for lane in 0..LANES {
-            sums[lane] += x[lane] * y[lane];
+    let whole = n - n % LANES;
+    for start in (0..whole).step_by(LANES) {
+        for (lane, s) in sums.iter_mut().enumerate() {
+            *s += term(start + lane);
         }
     }
-    for (lane, (x, y)) in ca.remainder().iter().zip(cb.remainder()).enumerate() {
-        sums[lane] += x * y;
+    for (lane, i) in (whole..n).enumerate() {
+        sums[lane] += term(i);
     }
     (sums[0] + sums[1]) + (sums[2] + sums[3])
 }
