@@ -108,6 +108,18 @@ impl From<SingularMatrix> for NewtonFailure {
     }
 }
 
+/// How a Newton correction factors its Jacobian.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Factorization {
+    /// Block LU: for the tangents of statics, which for very slender rods are ill-conditioned
+    /// (L/h = 1e4: the cantilever of tests/stability_thin.rs), where its round-off is the
+    /// smaller (the symmetric elimination's stalls Newton at 8e-12 there).
+    General,
+    /// The symmetric elimination, a third cheaper: for the time steps' Jacobians, which the
+    /// mass keeps well-conditioned.
+    Symmetric,
+}
+
 /// One Newton correction: with the residual `R` in `residual` and the Jacobian assembled in
 /// `jac` (constraints not yet applied), removes the constrained dofs, factors and overwrites
 /// `residual` with `-J^-1 R`. Returns the norms of `R` (free dofs) and of the correction.
@@ -116,6 +128,7 @@ pub(crate) fn newton_correction(
     jac: &mut BlockTridiagonal,
     residual: &mut [f64],
     iteration: u32,
+    factorization: Factorization,
 ) -> Result<(f64, f64), NewtonFailure> {
     rod.zero_constrained(residual);
     // Constrained entries are zero now: the norm over all is the norm over the free dofs.
@@ -124,7 +137,10 @@ pub(crate) fn newton_correction(
         return Err(NewtonFailure::NonFinite { iteration });
     }
     jac.constrain(rod.constrained());
-    jac.factor_symmetric()?;
+    match factorization {
+        Factorization::General => jac.factor()?,
+        Factorization::Symmetric => jac.factor_symmetric()?,
+    }
     jac.solve_in_place(residual);
     Ok((residual_norm, inf_norm(residual)))
 }

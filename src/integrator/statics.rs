@@ -1,6 +1,6 @@
 //! Static equilibrium `f_int(u) = f_ext` by Newton with the consistent tangent. Constrained dofs
 //! keep the values they have in `u` (prescribed displacements are set by the caller).
-use super::newton::{newton_correction, NewtonFailure, NewtonSettings, NewtonStats};
+use super::newton::{newton_correction, Factorization, NewtonFailure, NewtonSettings, NewtonStats};
 use crate::model::Rod;
 use crate::solver::BlockTridiagonal;
 
@@ -51,8 +51,13 @@ impl StaticSolver {
             for (r, f) in self.residual.iter_mut().zip(f_ext) {
                 *r -= f;
             }
-            let (residual_norm, correction) =
-                newton_correction(rod, &mut self.jac, &mut self.residual, stats.iterations)?;
+            let (residual_norm, correction) = newton_correction(
+                rod,
+                &mut self.jac,
+                &mut self.residual,
+                stats.iterations,
+                Factorization::General,
+            )?;
             for (x, d) in u.iter_mut().zip(&self.residual) {
                 *x += d;
             }

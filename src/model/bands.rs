@@ -4,6 +4,9 @@
 //! vectorizes.
 use crate::solver::vector::sum;
 
+/// A vector with its factor, `(a, x)` for `a x`.
+pub type Scaled<'a> = (f64, &'a [f64]);
+
 /// `P = diag(diagonal) + the band `off` at +3 and -3`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Bands {
@@ -56,7 +59,7 @@ impl Bands {
     pub fn add_bracket_times(
         &self,
         damping: &Bands,
-        ((a, x), (b, y)): ((f64, &[f64]), (f64, &[f64])),
+        ((a, x), (b, y)): (Scaled, Scaled),
         c: f64,
         z: Option<&[f64]>,
         out: &mut [f64],

@@ -91,6 +91,7 @@ impl Element {
         self.alpha
     }
 
+    #[inline(always)]
     fn strain_integrals(&self, ue: &Vector6) -> StrainIntegrals {
         let half_l = 0.5 * self.length;
         let inv_l = 1.0 / self.length;

@@ -5,6 +5,7 @@
 //! vector are summed before they are spread, so a preload and a control force at one point act
 //! as one force, as a single load would.
 use super::rod::Rod;
+use std::cell::Cell;
 
 /// When a load acts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,6 +73,10 @@ pub struct LoadSet {
     input_part: Vec<f64>,
     has_constant: bool,
     has_input: bool,
+    /// The last `(Omega, t, cos(Omega t))`: a step asks for the excitation at its midpoint
+    /// twice (its equation and its energy ledger), and the cosine of a large argument is not
+    /// cheap.
+    last_cos: Cell<(f64, f64, f64)>,
 }
 
 impl LoadSet {
@@ -120,6 +125,7 @@ impl LoadSet {
             steady: vec![0.0; n],
             constant_part: vec![0.0; n],
             input_part: vec![0.0; n],
+            last_cos: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
         }
     }
 
@@ -154,7 +160,15 @@ impl LoadSet {
 
     /// `cos(Omega t)` times the amplitude of harmonic group `g`.
     pub fn excitation(&self, g: usize, t: f64) -> f64 {
-        self.harmonic[g].1 * libm::cos(self.frequency * t)
+        let (omega, at, value) = self.last_cos.get();
+        let cos = if omega == self.frequency && at == t {
+            value
+        } else {
+            let value = libm::cos(self.frequency * t);
+            self.last_cos.set((self.frequency, t, value));
+            value
+        };
+        self.harmonic[g].1 * cos
     }
 
     /// `out += scale * f_ext(t)`.

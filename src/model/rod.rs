@@ -2,7 +2,7 @@
 //! matrices (internal force, tangent, mass, damping, loads). Global dof `3 i + k` is `u1`, `u2`,
 //! `w` (k = 0, 1, 2) of node `i`; element `e` joins nodes `e` and `e + 1`, so its six dofs are
 //! contiguous and the matrices are block tridiagonal.
-use super::bands::Bands;
+use super::bands::{Bands, Scaled};
 use super::element::{
     shape_functions, Element, ElementInertia, ElementTangent, Vector6, GAUSS_POINTS,
 };
@@ -305,7 +305,7 @@ impl Rod {
     /// [`Bands::add_bracket_times`]).
     pub fn add_bracket_times(
         &self,
-        bracket: ((f64, &[f64]), (f64, &[f64])),
+        bracket: (Scaled, Scaled),
         c: f64,
         z: Option<&[f64]>,
         out: &mut [f64],

@@ -15,7 +15,7 @@
 mod residual;
 
 use super::newton::{
-    chord_correction, newton_correction, NewtonFailure, NewtonSettings, NewtonStats,
+    chord_correction, newton_correction, Factorization, NewtonFailure, NewtonSettings, NewtonStats,
 };
 use super::tangent_map::TangentMap;
 use crate::model::{LoadSet, Rod};
@@ -236,8 +236,13 @@ impl Midpoint {
                 }
             }
             self.residual(rod, state, dt, Tangent::Iteration);
-            let (residual_norm, correction) =
-                newton_correction(rod, &mut self.jac, &mut self.residual, stats.iterations)?;
+            let (residual_norm, correction) = newton_correction(
+                rod,
+                &mut self.jac,
+                &mut self.residual,
+                stats.iterations,
+                Factorization::Symmetric,
+            )?;
             if tangents {
                 self.tangents.solve(&self.jac);
             }
@@ -270,9 +275,10 @@ impl Midpoint {
         let dofs = state.u.iter_mut().zip(state.v.iter_mut()).zip(&self.du);
         match self.scheme {
             Scheme::Midpoint => {
+                let rate = 2.0 / dt;
                 for ((u, v), d) in dofs {
                     *u += d;
-                    *v = 2.0 * d / dt - *v;
+                    *v = rate * d - *v;
                 }
             }
             Scheme::EnergyMomentum => {
