@@ -161,11 +161,9 @@ impl Rod {
 
     /// `f = f_int(u)` (overwrites `f`).
     pub fn internal_force(&self, u: &[f64], f: &mut [f64]) {
-        f.fill(0.0);
-        for (e, el) in self.elements.iter().enumerate() {
-            let fe = el.internal_force(&self.section, &Self::element_dofs(u, e));
-            add_element_vector(f, e, &fe);
-        }
+        assemble(f, &self.elements, |e, el| {
+            el.internal_force(&self.section, &Self::element_dofs(u, e))
+        });
     }
 
     /// `f = f_int(u)` (overwrites) and `jac += scale * K_T(u)`.
@@ -176,13 +174,12 @@ impl Rod {
         jac: &mut BlockTridiagonal,
         scale: f64,
     ) {
-        f.fill(0.0);
         let (mut fe, mut ke) = (Vector6::zeros(), ElementTangent::default());
-        for (e, el) in self.elements.iter().enumerate() {
+        assemble(f, &self.elements, |e, el| {
             el.force_and_tangent_into(&self.section, &Self::element_dofs(u, e), &mut fe, &mut ke);
-            add_element_vector(f, e, &fe);
             jac.add_element(e, &ke, scale);
-        }
+            fe
+        });
     }
 
     /// `f = f_int(u)` (overwrites) and each element's tangent into `tangents` (one per
@@ -193,12 +190,12 @@ impl Rod {
         f: &mut [f64],
         tangents: &mut [ElementTangent],
     ) {
-        f.fill(0.0);
         let mut fe = Vector6::zeros();
-        for ((e, el), ke) in self.elements.iter().enumerate().zip(tangents.iter_mut()) {
-            el.force_and_tangent_into(&self.section, &Self::element_dofs(u, e), &mut fe, ke);
-            add_element_vector(f, e, &fe);
-        }
+        assemble(f, &self.elements, |e, el| {
+            let ue = Self::element_dofs(u, e);
+            el.force_and_tangent_into(&self.section, &ue, &mut fe, &mut tangents[e]);
+            fe
+        });
     }
 
     /// `out += scale * K y`, `K` assembled from the element `tangents` (matrix-free).
@@ -393,6 +390,24 @@ impl Rod {
     /// The constrained dofs in increasing order.
     pub fn constrained(&self) -> &[usize] {
         &self.constrained
+    }
+}
+
+/// `f =` the sum of the element vectors `element_vector(e, element)` (overwrites, with no
+/// zeroing pass of its own: an element's second node is first touched by it).
+fn assemble(
+    f: &mut [f64],
+    elements: &[Element],
+    mut element_vector: impl FnMut(usize, &Element) -> Vector6,
+) {
+    f[..3].fill(0.0);
+    for (e, el) in elements.iter().enumerate() {
+        let fe = element_vector(e, el);
+        let (first, second) = f[3 * e..3 * e + 6].split_at_mut(3);
+        for k in 0..3 {
+            first[k] += fe[k];
+            second[k] = fe[3 + k];
+        }
     }
 }
 
