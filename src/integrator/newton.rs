@@ -122,11 +122,13 @@ pub(crate) enum Factorization {
 
 /// One Newton correction: with the residual `R` in `residual` and the Jacobian assembled in
 /// `jac` (constraints not yet applied), removes the constrained dofs, factors and overwrites
-/// `residual` with `-J^-1 R`. Returns the norms of `R` (free dofs) and of the correction.
+/// `residual` with `-J^-1 R`, and `also` (if given) with `J^-1 also` in the same pass. Returns
+/// the norms of `R` (free dofs) and of the correction.
 pub(crate) fn newton_correction(
     rod: &Rod,
     jac: &mut BlockTridiagonal,
     residual: &mut [f64],
+    also: Option<&mut [f64]>,
     iteration: u32,
     factorization: Factorization,
 ) -> Result<(f64, f64), NewtonFailure> {
@@ -141,17 +143,19 @@ pub(crate) fn newton_correction(
         Factorization::General => jac.factor()?,
         Factorization::Symmetric => jac.factor_symmetric()?,
     }
-    jac.solve_in_place(residual);
+    solve(jac, residual, also);
     Ok((residual_norm, inf_norm(residual)))
 }
 
 /// A chord correction: with the residual `R` in `residual` and `jac` factored earlier (at a
-/// nearby iterate), overwrites `residual` with `-J^-1 R`. Returns the norms of `R` (free dofs)
-/// and of the correction, or `None` when `R` is not finite.
+/// nearby iterate), overwrites `residual` with `-J^-1 R`, and `also` (if given) with
+/// `J^-1 also` in the same pass. Returns the norms of `R` (free dofs) and of the correction,
+/// or `None` when `R` is not finite.
 pub(crate) fn chord_correction(
     rod: &Rod,
     jac: &BlockTridiagonal,
     residual: &mut [f64],
+    also: Option<&mut [f64]>,
 ) -> Option<(f64, f64)> {
     rod.zero_constrained(residual);
     // Constrained entries are zero now: the norm over all is the norm over the free dofs.
@@ -159,8 +163,16 @@ pub(crate) fn chord_correction(
     if !residual_norm.is_finite() {
         return None;
     }
-    jac.solve_in_place(residual);
+    solve(jac, residual, also);
     Some((residual_norm, inf_norm(residual)))
+}
+
+/// `x = J^-1 x`, and the same for `also` in one pass over the factors.
+fn solve(jac: &BlockTridiagonal, x: &mut [f64], also: Option<&mut [f64]>) {
+    match also {
+        Some(y) => jac.solve_pair(x, y),
+        None => jac.solve_in_place(x),
+    }
 }
 
 /// Negates `x` and returns its largest magnitude (NaN if it holds a NaN): one pass.

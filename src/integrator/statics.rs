@@ -55,6 +55,7 @@ impl StaticSolver {
                 rod,
                 &mut self.jac,
                 &mut self.residual,
+                None,
                 stats.iterations,
                 Factorization::General,
             )?;

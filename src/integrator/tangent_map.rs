@@ -48,6 +48,9 @@ pub struct TangentMap {
     tangents_current: bool,
     /// Scratch for the refinement's residual.
     scratch: Vec<f64>,
+    /// Whether `scratch` holds the first refinement's correction of the one system, solved
+    /// with the last chord correction ([`TangentMap::paired_refinement`]).
+    refinement_solved: bool,
 }
 
 impl TangentMap {
@@ -99,6 +102,53 @@ impl TangentMap {
             jac.solve_in_place(y);
         }
         self.tangents_current = false;
+        self.refinement_solved = false;
+    }
+
+    /// With one system: its solution set to `b`, for the Newton correction to solve with its
+    /// own ([`TangentMap::solved_first`] follows); else `None`.
+    pub(super) fn paired_first_solve(&mut self) -> Option<&mut [f64]> {
+        if self.count != 1 {
+            return None;
+        }
+        let y = &mut self.solution[..self.dofs];
+        y.copy_from_slice(&self.rhs[..self.dofs]);
+        Some(y)
+    }
+
+    /// After a new factorization `jac`: the first solve, unless it was `paired` with the
+    /// Newton correction's.
+    pub(super) fn solved_first(&mut self, jac: &BlockTridiagonal, paired: bool) {
+        if paired {
+            self.tangents_current = false;
+            self.refinement_solved = false;
+        } else {
+            self.solve(jac);
+        }
+    }
+
+    /// With one system and the element tangents of this chord evaluation: the first
+    /// refinement's residual `b - A y - K y / 2` (`A = a M + c C`), for the chord correction to
+    /// solve with its own; else `None`.
+    pub(super) fn paired_refinement(&mut self, rod: &Rod, a: f64, c: f64) -> Option<&mut [f64]> {
+        self.refinement_solved = false;
+        if self.count != 1 || !self.tangents_current {
+            return None;
+        }
+        self.refinement_residual(rod, 0, a, c);
+        self.refinement_solved = true;
+        Some(&mut self.scratch)
+    }
+
+    /// `b_j - A y_j - K y_j / 2` into `scratch`, constrained entries zero.
+    fn refinement_residual(&mut self, rod: &Rod, j: usize, a: f64, c: f64) {
+        let range = j * self.dofs..(j + 1) * self.dofs;
+        let r = &mut self.scratch;
+        r.copy_from_slice(&self.rhs[range.clone()]);
+        let y = &self.solution[range];
+        rod.add_bracket_times(((-a, y), (0.0, y)), -c, None, r);
+        rod.add_tangent_times(&self.tangents, y, r, -0.5);
+        rod.zero_constrained(r);
     }
 
     /// Refines the solutions towards `J1^-1 b` with `J0` factored in `jac` (`A = a M + c C`).
@@ -119,14 +169,13 @@ impl TangentMap {
             // The error of the first solve is about its first correction.
             let mut previous = size;
             let mut converged = false;
-            for _ in 0..MAX_REFINEMENTS {
-                let r = &mut self.scratch;
-                r.copy_from_slice(&self.rhs[range.clone()]);
-                let y = &mut self.solution[range.clone()];
-                rod.add_bracket_times(((-a, &y[..]), (0.0, &y[..])), -c, None, r);
-                rod.add_tangent_times(&self.tangents, y, r, -0.5);
-                rod.zero_constrained(r);
-                jac.solve_in_place(r);
+            for pass in 0..MAX_REFINEMENTS {
+                // The first pass of a single system came with the chord correction.
+                if !(pass == 0 && j == 0 && self.refinement_solved) {
+                    self.refinement_residual(rod, j, a, c);
+                    jac.solve_in_place(&mut self.scratch);
+                }
+                let (r, y) = (&self.scratch, &mut self.solution[range.clone()]);
                 y.iter_mut().zip(r.iter()).for_each(|(y, r)| *y += r);
                 let correction = inf_norm(r);
                 // NaN-aware: a NaN is neither converged nor contracting.

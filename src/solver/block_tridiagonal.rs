@@ -303,28 +303,47 @@ impl BlockTridiagonal {
     /// Solves `A x = rhs` in place (after [`factor`](Self::factor)): both sweeps run from the
     /// two ends at once.
     pub fn solve_in_place(&self, rhs: &mut [f64]) {
+        self.solve_each(&mut [rhs]);
+    }
+
+    /// Solves `A x = a` and `A x = b` in place, in one pass over the factors.
+    pub fn solve_pair(&self, a: &mut [f64], b: &mut [f64]) {
+        self.solve_each(&mut [a, b]);
+    }
+
+    fn solve_each<const K: usize>(&self, rhs: &mut [&mut [f64]; K]) {
         assert!(self.factored, "solve before factor");
         let n = self.blocks();
         let middle = n / 2;
         for k in 0..middle {
-            let y = block(rhs, k + 1) - self.lower[k] * block(rhs, k);
-            set_block(rhs, k + 1, &y);
+            for x in rhs.iter_mut() {
+                let y = block(x, k + 1) - self.lower[k] * block(x, k);
+                set_block(x, k + 1, &y);
+            }
             let j = n - 1 - k;
             if j > middle {
-                let z = block(rhs, j - 1) - self.upper[j - 1] * block(rhs, j);
-                set_block(rhs, j - 1, &z);
+                for x in rhs.iter_mut() {
+                    let z = block(x, j - 1) - self.upper[j - 1] * block(x, j);
+                    set_block(x, j - 1, &z);
+                }
             }
         }
-        let x = self.diag[middle] * block(rhs, middle);
-        set_block(rhs, middle, &x);
+        for x in rhs.iter_mut() {
+            let m = self.diag[middle] * block(x, middle);
+            set_block(x, middle, &m);
+        }
         for k in 0..middle {
             let i = middle - 1 - k;
-            let x = self.diag[i] * block(rhs, i) - self.upper[i] * block(rhs, i + 1);
-            set_block(rhs, i, &x);
+            for x in rhs.iter_mut() {
+                let y = self.diag[i] * block(x, i) - self.upper[i] * block(x, i + 1);
+                set_block(x, i, &y);
+            }
             let j = middle + 1 + k;
             if j < n {
-                let x = self.diag[j] * block(rhs, j) - self.lower[j - 1] * block(rhs, j - 1);
-                set_block(rhs, j, &x);
+                for x in rhs.iter_mut() {
+                    let y = self.diag[j] * block(x, j) - self.lower[j - 1] * block(x, j - 1);
+                    set_block(x, j, &y);
+                }
             }
         }
     }
@@ -488,6 +507,20 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A pair of right-hand sides solves like each alone, to the bit.
+    #[test]
+    fn pairs_solve_like_singles() {
+        let mut a = test_matrix(7, false, 6.0);
+        a.factor().unwrap();
+        let mut x: Vec<f64> = (0..21).map(|j| (0.7 * j as f64).cos()).collect();
+        let mut y: Vec<f64> = (0..21).map(|j| (1.3 * j as f64).sin()).collect();
+        let (mut x1, mut y1) = (x.clone(), y.clone());
+        a.solve_in_place(&mut x1);
+        a.solve_in_place(&mut y1);
+        a.solve_pair(&mut x, &mut y);
+        assert_eq!((x, y), (x1, y1));
     }
 
     /// The symmetric factorization of a symmetric matrix solves like the general one.

@@ -216,10 +216,19 @@ impl Midpoint {
                     Tangent::Skip
                 };
                 self.residual(rod, state, dt, tangent);
-                let (residual_norm, chord) = chord_correction(rod, &self.jac, &mut self.residual)
-                    .ok_or(NewtonFailure::NonFinite {
-                    iteration: stats.iterations,
-                })?;
+                // The tangent map's first refinement solved with the chord correction.
+                let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
+                let refinement = if tangents {
+                    self.tangents.paired_refinement(rod, a, c)
+                } else {
+                    None
+                };
+                let (residual_norm, chord) =
+                    chord_correction(rod, &self.jac, &mut self.residual, refinement).ok_or(
+                        NewtonFailure::NonFinite {
+                            iteration: stats.iterations,
+                        },
+                    )?;
                 if chord <= CHORD_CONTRACTION * last {
                     let increment = self.apply_correction();
                     let converged = self
@@ -236,15 +245,23 @@ impl Midpoint {
                 }
             }
             self.residual(rod, state, dt, Tangent::Iteration);
+            // The tangent map's first solve with the Newton correction (one system: paired).
+            let first = if tangents {
+                self.tangents.paired_first_solve()
+            } else {
+                None
+            };
+            let paired = first.is_some();
             let (residual_norm, correction) = newton_correction(
                 rod,
                 &mut self.jac,
                 &mut self.residual,
+                first,
                 stats.iterations,
                 Factorization::Symmetric,
             )?;
             if tangents {
-                self.tangents.solve(&self.jac);
+                self.tangents.solved_first(&self.jac, paired);
             }
             let increment = self.apply_correction();
             stats.record(residual_norm, correction);
