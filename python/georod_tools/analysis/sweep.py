@@ -110,11 +110,27 @@ def local_cluster(workers: int) -> Any:
     """`workers` single-threaded processes, each holding its running case and the next one
     (worker saturation 2: the next case starts without a round trip to the scheduler, which
     cost 3 ms per case, a tenth of a short case; a worker that dies takes its running case
-    with it, and the one it held is run elsewhere)."""
+    with it, and the one it held is run elsewhere).
+
+    On Linux the worker processes are forked from this one, which has imported everything
+    they need: a worker is up in 0.07 s instead of the 0.4 s of a fresh interpreter importing
+    Dask again (elsewhere, where forking is unsafe or unavailable, they are spawned). Forking
+    a process with threads is safe only while no other thread holds a lock the child needs:
+    this process starts no thread of its own before the cluster is up (see `on_started` of
+    :func:`sweep`), and a worker restarted later inherits at most an import under way, of a
+    module it never imports."""
     import dask
     from dask.distributed import LocalCluster
 
-    with dask.config.set({"distributed.scheduler.worker-saturation": 2.0}):
+    method = "fork" if sys.platform.startswith("linux") else "spawn"
+    config = {
+        "distributed.scheduler.worker-saturation": 2.0,
+        "distributed.worker.multiprocessing-method": method,
+        # Dask's sampling profiler takes the worker's GIL every 10 ms to walk the running
+        # case's stack, which is in the FMU anyway: 4 % of a case's time.
+        "distributed.worker.profile.enabled": False,
+    }
+    with dask.config.set(config):
         return LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
@@ -135,6 +151,7 @@ def sweep(
     payload: FmuPayload | None = None,
     case_fn: CaseFn = run_case,
     progress_total: int | None = None,
+    on_started: Callable[[], None] | None = None,
 ) -> SweepOutcome:
     """Runs `base` for every value of `param` on Dask; always finishes.
 
@@ -147,6 +164,8 @@ def sweep(
         ``base.fmu``, so it need not exist where they run.
     case_fn: what runs one case on a worker (default :func:`run_case`; must be importable there).
     progress_total: the progress bar's total when this sweep finishes a larger one (``--resume``).
+    on_started: called in this process once the workers are up and have the FMU, while the
+        cases run (e.g. to load what the results need next).
     Raises FmuUnavailableError (naming each worker and its reason) when no worker can load the
     FMU.
     """
@@ -166,6 +185,8 @@ def sweep(
             cluster = stack.enter_context(local_cluster(workers))
             client = stack.enter_context(Client(cluster))
         outcome.workers = install(client, payload)
+        if on_started is not None:
+            on_started()
         good = [a for a, s in outcome.workers.items() if s["fmu_loaded"]]
         for a, s in sorted(outcome.workers.items()):
             if not s["fmu_loaded"]:

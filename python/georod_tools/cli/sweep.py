@@ -141,9 +141,6 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
     from georod_tools.analysis.sweep import sweep, sweep_values
     from georod_tools.report.case_files import write_sweep_csv
 
-    # The figure's modules (matplotlib: half a second) load while the cases run, when this
-    # process only waits; importing is thread-safe, the plot below waits for it if need be.
-    Thread(target=import_module, args=("georod_tools.report.figures",), daemon=True).start()
     check_case_options(parser, args)
     if args.param in ("elements", "substeps"):
         parser.error(f"--param {args.param}: sweep a Real parameter")
@@ -200,6 +197,7 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
                 progress=not args.no_progress,
                 on_done=on_done,
                 progress_total=len(values),
+                on_started=load_figures,
             )
             session["workers"] = outcome.workers
     except KeyboardInterrupt:
@@ -238,6 +236,13 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
     for p in (png, summary, samples, record.path, log.path):
         print(f"wrote {p}")
     return 0
+
+
+def load_figures() -> None:
+    """Loads the figure's modules (matplotlib: half a second) in a thread while the cases run,
+    when this process only waits; importing is thread-safe, the plot waits for it if need be.
+    Started once the workers are up: they may be forked from this process."""
+    Thread(target=import_module, args=("georod_tools.report.figures",), daemon=True).start()
 
 
 def _print_summary(
