@@ -26,6 +26,14 @@ pub fn shape_functions(xi: f64) -> (f64, f64) {
     (0.5 * (1.0 - xi), 0.5 * (1.0 + xi))
 }
 
+/// `(sin w, cos w)` of the rotation `w` at the two Gauss points.
+pub type GaussTrig = [(f64, f64); 2];
+
+/// `(sin w, cos w)` at the two Gauss points of an element with dofs `ue`.
+pub fn gauss_trig(ue: &Vector6) -> GaussTrig {
+    SHAPE_AT_GAUSS.map(|(na, nb)| libm::sincos(na * ue[2] + nb * ue[5]))
+}
+
 /// Shape functions at the two Gauss points.
 const SHAPE_AT_GAUSS: [(f64, f64); 2] = [
     (0.788_675_134_594_812_9, 0.211_324_865_405_187_1),
@@ -91,8 +99,10 @@ impl Element {
         self.alpha
     }
 
+    /// The strain integrals at `ue`, whose rotation has the sines and cosines `trig` at the
+    /// Gauss points ([`gauss_trig`]).
     #[inline(always)]
-    fn strain_integrals(&self, ue: &Vector6) -> StrainIntegrals {
+    fn strain_integrals(&self, ue: &Vector6, trig: &GaussTrig) -> StrainIntegrals {
         let half_l = 0.5 * self.length;
         let inv_l = 1.0 / self.length;
         let du1 = (ue[3] - ue[0]) * inv_l;
@@ -110,8 +120,7 @@ impl Element {
             }; 2],
         };
         for (g, &(na, nb)) in SHAPE_AT_GAUSS.iter().enumerate() {
-            let w = na * ue[2] + nb * ue[5];
-            let (sin_w, cos_w) = libm::sincos(w);
+            let (sin_w, cos_w) = trig[g];
             let (cos_a, sin_a) = self.tangent[g];
             let cos_aw = cos_a * cos_w - sin_a * sin_w;
             let sin_aw = sin_a * cos_w + cos_a * sin_w;
@@ -145,13 +154,13 @@ impl Element {
 
     /// The eliminated constant forces `S = (S1, S2) = C b / l` (normal and shear force).
     pub fn stress_resultants(&self, section: &Section, ue: &Vector6) -> Vector2<f64> {
-        let s = self.forces(section, &self.strain_integrals(ue).b);
+        let s = self.forces(section, &self.strain_integrals(ue, &gauss_trig(ue)).b);
         Vector2::new(s[0], s[1])
     }
 
     /// Strain energy `b^T C b / (2 l) + EI l k^2 / 2`.
     pub fn strain_energy(&self, section: &Section, ue: &Vector6) -> f64 {
-        let b = self.strain_integrals(ue).b;
+        let b = self.strain_integrals(ue, &gauss_trig(ue)).b;
         let kappa = (ue[5] - ue[2]) / self.length;
         0.5 * (section.ea * b[0] * b[0] + section.ga * b[1] * b[1]) / self.length
             + 0.5 * section.ei * self.length * kappa * kappa
@@ -170,33 +179,47 @@ impl Element {
 
     /// Internal force `B^T S + K_bend u`.
     pub fn internal_force(&self, section: &Section, ue: &Vector6) -> Vector6 {
-        self.force_from(section, ue, &self.strain_integrals(ue))
+        self.internal_force_with(section, ue, &gauss_trig(ue))
+    }
+
+    /// [`internal_force`](Self::internal_force) with the Gauss points' `trig` given.
+    #[inline(always)]
+    pub fn internal_force_with(
+        &self,
+        section: &Section,
+        ue: &Vector6,
+        trig: &GaussTrig,
+    ) -> Vector6 {
+        self.force_from(section, ue, &self.strain_integrals(ue, trig))
     }
 
     /// Internal force and consistent (symmetric) tangent as a 6x6 matrix.
     pub fn force_and_tangent(&self, section: &Section, ue: &Vector6) -> (Vector6, Matrix6) {
         let mut f = Vector6::zeros();
         let mut k = ElementTangent::default();
-        self.force_and_tangent_into(section, ue, &mut f, &mut k);
+        self.force_and_tangent_into(section, ue, &gauss_trig(ue), &mut f, &mut k);
         (f, k.to_matrix())
     }
 
     /// Internal force and consistent tangent, the tangent as its node blocks (what the
-    /// assembly adds), written into `f` and `k` (overwritten; returning them would copy them). Written out block by block: the translation rows of `B` at the two
+    /// assembly adds), written into `f` and `k` (overwritten; returning them would copy them),
+    /// with the Gauss points' `trig` given ([`gauss_trig`]). Written out block by block: the translation rows of `B` at the two
     /// nodes are opposite (`-t`, `t`), so the material part `B^T (C / l) B` has one 2x2
     /// translation block `T` (`+T` on the diagonal blocks, `-T` off them), one 2-vector per
     /// rotation coupling it with the translations, and three rotation entries; the geometric
     /// part `S1 b1'' + S2 b2''` adds to the couplings and the rotation entries only.
+    #[inline(always)]
     pub fn force_and_tangent_into(
         &self,
         section: &Section,
         ue: &Vector6,
+        trig: &GaussTrig,
         f: &mut Vector6,
         k: &mut ElementTangent,
     ) {
         let half_l = 0.5 * self.length;
         let inv_l = 1.0 / self.length;
-        let si = self.strain_integrals(ue);
+        let si = self.strain_integrals(ue, trig);
         *f = self.force_from(section, ue, &si);
         let s = self.forces(section, &si.b);
         let (p1, p2, r) = (si.p1, si.p2, si.r);

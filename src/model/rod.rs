@@ -4,7 +4,8 @@
 //! contiguous and the matrices are block tridiagonal.
 use super::bands::{Bands, Scaled};
 use super::element::{
-    shape_functions, Element, ElementInertia, ElementTangent, Vector6, GAUSS_POINTS,
+    gauss_trig, shape_functions, Element, ElementInertia, ElementTangent, GaussTrig, Vector6,
+    GAUSS_POINTS,
 };
 use super::geometry::ReferenceCurve;
 use super::section::Section;
@@ -161,8 +162,8 @@ impl Rod {
 
     /// `f = f_int(u)` (overwrites `f`).
     pub fn internal_force(&self, u: &[f64], f: &mut [f64]) {
-        assemble(f, &self.elements, |e, el| {
-            el.internal_force(&self.section, &Self::element_dofs(u, e))
+        assemble(f, &self.elements, u, |_, el, ue, trig| {
+            el.internal_force_with(&self.section, ue, trig)
         });
     }
 
@@ -175,8 +176,8 @@ impl Rod {
         scale: f64,
     ) {
         let (mut fe, mut ke) = (Vector6::zeros(), ElementTangent::default());
-        assemble(f, &self.elements, |e, el| {
-            el.force_and_tangent_into(&self.section, &Self::element_dofs(u, e), &mut fe, &mut ke);
+        assemble(f, &self.elements, u, |e, el, ue, trig| {
+            el.force_and_tangent_into(&self.section, ue, trig, &mut fe, &mut ke);
             jac.add_element(e, &ke, scale);
             fe
         });
@@ -191,9 +192,8 @@ impl Rod {
         tangents: &mut [ElementTangent],
     ) {
         let mut fe = Vector6::zeros();
-        assemble(f, &self.elements, |e, el| {
-            let ue = Self::element_dofs(u, e);
-            el.force_and_tangent_into(&self.section, &ue, &mut fe, &mut tangents[e]);
+        assemble(f, &self.elements, u, |e, el, ue, trig| {
+            el.force_and_tangent_into(&self.section, ue, trig, &mut fe, &mut tangents[e]);
             fe
         });
     }
@@ -234,13 +234,9 @@ impl Rod {
         for (e, el) in self.elements.iter().enumerate() {
             let (a, b) = (Self::element_dofs(ua, e), Self::element_dofs(ub, e));
             let fe = el.discrete_gradient(&self.section, &a, &b);
-            let mut ke = ElementTangent::default();
-            el.force_and_tangent_into(
-                &self.section,
-                &(0.5 * (a + b)),
-                &mut Vector6::zeros(),
-                &mut ke,
-            );
+            let (mut ke, mid) = (ElementTangent::default(), 0.5 * (a + b));
+            let trig = gauss_trig(&mid);
+            el.force_and_tangent_into(&self.section, &mid, &trig, &mut Vector6::zeros(), &mut ke);
             add_element_vector(f, e, &fe);
             jac.add_element(e, &ke, scale);
         }
@@ -393,20 +389,35 @@ impl Rod {
     }
 }
 
-/// `f =` the sum of the element vectors `element_vector(e, element)` (overwrites, with no
-/// zeroing pass of its own: an element's second node is first touched by it).
+/// Elements evaluated together: the sines and cosines of their Gauss points first, all
+/// independent, so that the processor overlaps them (computed element by element, each waited
+/// on its element's arithmetic: 3 % of a step), then their arithmetic.
+const BLOCK: usize = 16;
+
+/// `f =` the sum of the element vectors `element_vector(e, element, ue, trig)` at the dofs `u`
+/// (overwrites, with no zeroing pass of its own: an element's second node is first touched by
+/// it), `trig` the sines and cosines of the element's Gauss points.
 fn assemble(
     f: &mut [f64],
     elements: &[Element],
-    mut element_vector: impl FnMut(usize, &Element) -> Vector6,
+    u: &[f64],
+    mut element_vector: impl FnMut(usize, &Element, &Vector6, &GaussTrig) -> Vector6,
 ) {
     f[..3].fill(0.0);
-    for (e, el) in elements.iter().enumerate() {
-        let fe = element_vector(e, el);
-        let (first, second) = f[3 * e..3 * e + 6].split_at_mut(3);
-        for k in 0..3 {
-            first[k] += fe[k];
-            second[k] = fe[3 + k];
+    let mut trig = [[(0.0, 1.0); 2]; BLOCK];
+    for (b, block) in elements.chunks(BLOCK).enumerate() {
+        let first = b * BLOCK;
+        for (t, e) in trig.iter_mut().zip(first..first + block.len()) {
+            *t = gauss_trig(&Rod::element_dofs(u, e));
+        }
+        for (i, el) in block.iter().enumerate() {
+            let e = first + i;
+            let fe = element_vector(e, el, &Rod::element_dofs(u, e), &trig[i]);
+            let (first, second) = f[3 * e..3 * e + 6].split_at_mut(3);
+            for k in 0..3 {
+                first[k] += fe[k];
+                second[k] = fe[3 + k];
+            }
         }
     }
 }

@@ -352,7 +352,7 @@ impl Midpoint {
 
     /// Adds the correction in `residual` to `du`; returns `|du|_inf` after it (NaN-aware).
     fn apply_correction(&mut self) -> f64 {
-        let r = &self.residual;
+        let r = &self.residual[..self.du.len()];
         update_and_norm(&mut self.du, |i, d| d + r[i])
     }
 
