@@ -11,12 +11,18 @@
 //! `b` couple the translations only with the rotations, so the generic products
 //! `B^T C B` and `map^T H map` reduce to a few dozen multiply-adds.
 use super::section::Section;
-use nalgebra::{Matrix2x3, Matrix3, SMatrix, SVector, Vector2, Vector3};
+use nalgebra::{SMatrix, SVector, Vector2, Vector3};
+
+#[path = "discrete_gradient.rs"]
+mod discrete_gradient;
+#[path = "element_tangent.rs"]
+mod element_tangent;
+
+pub use discrete_gradient::cayley;
+pub use element_tangent::ElementTangent;
 
 pub type Vector6 = SVector<f64, 6>;
 pub type Matrix6 = SMatrix<f64, 6, 6>;
-type Matrix2x6 = SMatrix<f64, 2, 6>;
-type Matrix3x6 = SMatrix<f64, 3, 6>;
 
 /// Gauss points on `[-1, 1]` (weights 1): two points for everything (model.md).
 pub const GAUSS_POINTS: [f64; 2] = [-0.577_350_269_189_625_8, 0.577_350_269_189_625_8];
@@ -261,161 +267,6 @@ impl Element {
             rot,
         };
     }
-}
-
-/// The symmetric 6x6 tangent of an element by its ten distinct numbers: with `T` the 2x2
-/// translation block `[[t00, t01], [t01, t11]]`, `h_a`, `h_b` the couplings of the second
-/// node's translations with each rotation and `rot` the rotation entries,
-/// `K = [[T, -h_a, -T, -h_b], [-h_a^T, r_aa, h_a^T, r_ab], [-T, h_a, T, h_b],
-/// [-h_b^T, r_ab, h_b^T, r_bb]]` (dofs ordered translation, rotation per node).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ElementTangent {
-    t: [f64; 3],
-    h: [[f64; 2]; 2],
-    rot: [f64; 3],
-}
-
-impl ElementTangent {
-    /// `K y` for the element dofs `y`: with `d` the second node's translation minus the
-    /// first's, `(-T d - h_a y_wa - h_b y_wb, h_a.d + r_aa y_wa + r_ab y_wb)` at the first node,
-    /// the negated translation part and `h_b.d + r_ab y_wa + r_bb y_wb` at the second.
-    pub fn mul(&self, y: &Vector6) -> Vector6 {
-        let [t00, t01, t11] = self.t;
-        let [ha, hb] = self.h;
-        let (d0, d1) = (y[3] - y[0], y[4] - y[1]);
-        let (wa, wb) = (y[2], y[5]);
-        let f0 = t00 * d0 + t01 * d1 + ha[0] * wa + hb[0] * wb;
-        let f1 = t01 * d0 + t11 * d1 + ha[1] * wa + hb[1] * wb;
-        let ma = ha[0] * d0 + ha[1] * d1 + self.rot[0] * wa + self.rot[1] * wb;
-        let mb = hb[0] * d0 + hb[1] * d1 + self.rot[1] * wa + self.rot[2] * wb;
-        Vector6::new(-f0, -f1, ma, f0, f1, mb)
-    }
-
-    /// The node blocks `(K_aa, K_ab, K_bb)`; `K_ba = K_ab^T`.
-    pub fn blocks(&self) -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>) {
-        let [t00, t01, t11] = self.t;
-        let [ha, hb] = self.h;
-        let rot = self.rot;
-        #[rustfmt::skip]
-        let blocks = (
-            Matrix3::new(
-                t00, t01, -ha[0],
-                t01, t11, -ha[1],
-                -ha[0], -ha[1], rot[0],
-            ),
-            Matrix3::new(
-                -t00, -t01, -hb[0],
-                -t01, -t11, -hb[1],
-                ha[0], ha[1], rot[1],
-            ),
-            Matrix3::new(
-                t00, t01, hb[0],
-                t01, t11, hb[1],
-                hb[0], hb[1], rot[2],
-            ),
-        );
-        blocks
-    }
-
-    pub fn to_matrix(&self) -> Matrix6 {
-        let (aa, ab, bb) = self.blocks();
-        let mut k = Matrix6::zeros();
-        k.fixed_view_mut::<3, 3>(0, 0).copy_from(&aa);
-        k.fixed_view_mut::<3, 3>(0, 3).copy_from(&ab);
-        k.fixed_view_mut::<3, 3>(3, 0).copy_from(&ab.transpose());
-        k.fixed_view_mut::<3, 3>(3, 3).copy_from(&bb);
-        k
-    }
-}
-
-impl Element {
-    /// Energy-momentum discrete gradient of the element energy between the states `ua` and
-    /// `ub`, conjugate to the translation increments and to the Cayley increments of the nodal
-    /// rotations, `tau = 2 tan(Dw / 2)` (see [`cayley`]): a force `f` with
-    /// `f_x . Dx + f_w . tau = V(ub) - V(ua)` exactly, which vanishes on rigid translations and
-    /// on the rigid rotation `(dx, tau) = (e3 x xbar, 1)` of the mid configuration (so a scheme
-    /// that moves rotations by `tau` conserves energy, linear and angular momentum).
-    ///
-    /// Per Gauss point, with the strain `Gamma = Lambda(theta)^T x' - E1`, the averaged rotation
-    /// `Lambdabar = (Lambda_a + Lambda_b) / 2 = cos(Dtheta/2) Lambda(theta_mid)` and
-    /// `xbar' = (x'_a + x'_b) / 2`, the increment is exactly
-    /// `DGamma = Lambdabar^T (Dx' - tau_gp J xbar')`, `tau_gp = 2 tan(Dtheta_gp / 2)`;
-    /// `tau_gp` is written with weights on the nodal `tau` that sum to one (secant
-    /// interpolation), and the bending increment `Dw_b - Dw_a` with weights `(-g, g)`.
-    /// The membrane energy is quadratic in `b`, so the averaged force `Sbar = C (ba + bb) / (2 l)`
-    /// gives `Sbar . Db = DV` exactly; likewise the average curvature for bending.
-    pub fn discrete_gradient(&self, section: &Section, ua: &Vector6, ub: &Vector6) -> Vector6 {
-        let half_l = 0.5 * self.length;
-        let inv_l = 1.0 / self.length;
-        let (dwa, dwb) = (ub[2] - ua[2], ub[5] - ua[5]);
-        let (ta, tb) = (cayley(dwa), cayley(dwb));
-        // Rotation increments as linear forms in the nodal tau: Dw = dw_dtau(t1, t2) (t2 - t1)
-        // between two tau values, exact (the secant of 2 atan(t / 2)).
-        let distinct = (tb - ta).abs() > 1e-9 * (1.0 + ta.abs() + tb.abs());
-        let mut b_bar = Matrix2x6::zeros();
-        let mut b_sum = Vector2::zeros();
-        for (g, &xi) in GAUSS_POINTS.iter().enumerate() {
-            let (na, nb) = shape_functions(xi);
-            let (cos_al, sin_al) = self.tangent[g];
-            let stretch = |u: &Vector6| {
-                let x1 = cos_al + (u[3] - u[0]) * inv_l;
-                let x2 = sin_al + (u[4] - u[1]) * inv_l;
-                (x1, x2, self.alpha[g] + na * u[2] + nb * u[5])
-            };
-            let (xa1, xa2, theta_a) = stretch(ua);
-            let (xb1, xb2, theta_b) = stretch(ub);
-            let (sa, ca) = libm::sincos(theta_a);
-            let (sb, cb) = libm::sincos(theta_b);
-            b_sum += half_l
-                * Vector2::new(
-                    xa1 * ca + xa2 * sa + xb1 * cb + xb2 * sb - 2.0,
-                    -xa1 * sa + xa2 * ca - xb1 * sb + xb2 * cb,
-                );
-            // Lambdabar^T rows (averaged directors) and J xbar'.
-            let d1 = (0.5 * (ca + cb), 0.5 * (sa + sb));
-            let d2 = (-0.5 * (sa + sb), 0.5 * (ca + cb));
-            let (jx1, jx2) = (-0.5 * (xa2 + xb2), 0.5 * (xa1 + xb1));
-            let rot1 = -(d1.0 * jx1 + d1.1 * jx2);
-            let rot2 = -(d2.0 * jx1 + d2.1 * jx2);
-            // tau_gp = wa tau_a + wb tau_b exactly, with wa + wb = 1.
-            let (wa, wb) = if distinct {
-                let t_gp = cayley(na * dwa + nb * dwb);
-                ((tb - t_gp) / (tb - ta), (t_gp - ta) / (tb - ta))
-            } else {
-                (na, nb)
-            };
-            #[rustfmt::skip]
-            let grad = Matrix2x3::new(
-                d1.0, d1.1, rot1,
-                d2.0, d2.1, rot2,
-            );
-            #[rustfmt::skip]
-            let map = Matrix3x6::new(
-                -inv_l, 0.0, 0.0, inv_l, 0.0, 0.0,
-                0.0, -inv_l, 0.0, 0.0, inv_l, 0.0,
-                0.0, 0.0, wa, 0.0, 0.0, wb,
-            );
-            b_bar += half_l * grad * map;
-        }
-        let s_bar = 0.5 * Vector2::new(section.ea * b_sum[0], section.ga * b_sum[1]) * inv_l;
-        let mut f = b_bar.transpose() * s_bar;
-        // Bending: D(w_b - w_a) = g (tau_b - tau_a).
-        let g = if distinct {
-            (dwb - dwa) / (tb - ta)
-        } else {
-            1.0 / (1.0 + 0.25 * ta * tb)
-        };
-        let moment = section.ei * inv_l * 0.5 * ((ua[5] - ua[2]) + (ub[5] - ub[2])) * g;
-        f[2] -= moment;
-        f[5] += moment;
-        f
-    }
-}
-
-/// Cayley increment of a rotation increment: `tau = 2 tan(Dw / 2)` (the rotation that the
-/// energy-momentum scheme's angular velocity `tau / dt` describes; `tau = Dw + O(Dw^3)`).
-pub fn cayley(dw: f64) -> f64 {
-    2.0 * libm::tan(0.5 * dw)
 }
 
 /// Mass and damping coefficients of one element: the consistent pattern (two Gauss points

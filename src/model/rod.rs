@@ -12,6 +12,9 @@ use super::section::Section;
 use crate::solver::BlockTridiagonal;
 use nalgebra::Vector2;
 
+#[path = "rod_energy.rs"]
+mod rod_energy;
+
 /// Dof index within a node.
 pub const U1: usize = 0;
 pub const U2: usize = 1;
@@ -277,22 +280,6 @@ impl Rod {
         self.damping_bands.add_times(y, out, damping_scale);
     }
 
-    pub fn strain_energy(&self, u: &[f64]) -> f64 {
-        (self.elements.iter().enumerate())
-            .map(|(e, el)| el.strain_energy(&self.section, &Self::element_dofs(u, e)))
-            .sum()
-    }
-
-    /// `v^T M v / 2`.
-    pub fn kinetic_energy(&self, v: &[f64]) -> f64 {
-        0.5 * self.mass_bands.form(v)
-    }
-
-    /// `v^T C v` (power dissipated by the damping).
-    pub fn dissipation_rate(&self, v: &[f64]) -> f64 {
-        self.damping_bands.form(v)
-    }
-
     /// `out += M (a x + b y) + c C x + z`: the linear part of the midpoint rule's residual and
     /// of its tangent map, with the bracket formed before the product (see
     /// [`Bands::add_bracket_times`]).
@@ -350,30 +337,6 @@ impl Rod {
     /// Current position of node `i`.
     pub fn node_position(&self, u: &[f64], i: usize) -> Vector2<f64> {
         self.curve.position(self.node_s[i]) + Vector2::new(u[3 * i + U1], u[3 * i + U2])
-    }
-
-    /// Linear momentum `sum M v` over the translations.
-    pub fn linear_momentum(&self, v: &[f64]) -> Vector2<f64> {
-        let mut p = vec![0.0; v.len()];
-        self.add_mass_times(v, &mut p, 1.0);
-        let mut total = Vector2::zeros();
-        for i in 0..self.nodes() {
-            total += Vector2::new(p[3 * i + U1], p[3 * i + U2]);
-        }
-        total
-    }
-
-    /// Angular momentum about the origin, `integral (x × rho A du/dt + rho I dw/dt) ds`, with the
-    /// consistent (exactly integrated) mass: `sum_i x_i × (M v)_i + (M v)_w`.
-    pub fn angular_momentum(&self, u: &[f64], v: &[f64]) -> f64 {
-        let mut p = vec![0.0; v.len()];
-        self.add_mass_times(v, &mut p, 1.0);
-        let mut total = 0.0;
-        for i in 0..self.nodes() {
-            let x = self.node_position(u, i);
-            total += x[0] * p[3 * i + U2] - x[1] * p[3 * i + U1] + p[3 * i + ROTATION];
-        }
-        total
     }
 
     /// Sets constrained entries of `x` to zero.

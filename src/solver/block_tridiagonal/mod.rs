@@ -1,0 +1,166 @@
+//! Block-tridiagonal matrices with 3x3 blocks (one block row per node) and their block LU
+//! factorization: O(nodes) work and no allocation after construction.
+//!
+//! Storage: `diag[i]` is block `(i, i)`, `upper[i]` block `(i, i+1)`, `lower[i]` block `(i+1, i)`.
+//!
+//! The factorization and the solves are in the submodules `factor` and `solve`.
+mod factor;
+mod solve;
+#[cfg(test)]
+mod tests;
+
+use crate::model::element::ElementTangent;
+use nalgebra::{Matrix3, Vector3};
+use solve::block;
+use std::fmt;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct SingularMatrix {
+    /// Block row where a pivot block could not be inverted.
+    pub block: usize,
+}
+
+impl fmt::Display for SingularMatrix {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "singular pivot block at node {}", self.block)
+    }
+}
+
+impl std::error::Error for SingularMatrix {}
+
+#[derive(Clone, Debug)]
+pub struct BlockTridiagonal {
+    diag: Vec<Matrix3<f64>>,
+    upper: Vec<Matrix3<f64>>,
+    lower: Vec<Matrix3<f64>>,
+    factored: bool,
+    /// Number of pivot blocks with negative determinant (after `factor`).
+    negative_pivots: usize,
+    /// Number of negative eigenvalues of the pivots, when counted
+    /// ([`BlockTridiagonal::factor_with_inertia`]).
+    inertia: Option<usize>,
+}
+
+impl BlockTridiagonal {
+    pub fn new(blocks: usize) -> BlockTridiagonal {
+        assert!(blocks >= 1);
+        BlockTridiagonal {
+            diag: vec![Matrix3::zeros(); blocks],
+            upper: vec![Matrix3::zeros(); blocks - 1],
+            lower: vec![Matrix3::zeros(); blocks - 1],
+            factored: false,
+            negative_pivots: 0,
+            inertia: None,
+        }
+    }
+
+    pub fn blocks(&self) -> usize {
+        self.diag.len()
+    }
+
+    pub fn set_zero(&mut self) {
+        self.diag.iter_mut().for_each(|m| m.fill(0.0));
+        self.upper.iter_mut().for_each(|m| m.fill(0.0));
+        self.lower.iter_mut().for_each(|m| m.fill(0.0));
+        self.factored = false;
+    }
+
+    /// Overwrites `self` with `other` (same size), unfactored.
+    pub fn copy_from(&mut self, other: &BlockTridiagonal) {
+        debug_assert!(!other.factored);
+        self.diag.copy_from_slice(&other.diag);
+        self.upper.copy_from_slice(&other.upper);
+        self.lower.copy_from_slice(&other.lower);
+        self.factored = false;
+    }
+
+    /// Adds `scale * k` for the element between nodes `e` and `e + 1`.
+    pub fn add_element(&mut self, e: usize, k: &ElementTangent, scale: f64) {
+        debug_assert!(!self.factored);
+        let (aa, ab, bb) = k.blocks();
+        self.diag[e] += scale * aa;
+        self.upper[e] += scale * ab;
+        self.lower[e] += scale * ab.transpose();
+        self.diag[e + 1] += scale * bb;
+    }
+
+    /// Adds `scale * [[2 c, c], [c, 2 c]]` per dof kind (`coeffs = (c_u1, c_u2, c_w)`), the
+    /// pattern of the consistent mass and damping matrices of element `e`, or with `lumped`
+    /// `scale * [[3 c, 0], [0, 3 c]]`.
+    pub fn add_element_pattern(
+        &mut self,
+        e: usize,
+        coeffs: &Vector3<f64>,
+        scale: f64,
+        lumped: bool,
+    ) {
+        debug_assert!(!self.factored);
+        let d = Matrix3::from_diagonal(&(coeffs * scale));
+        if lumped {
+            self.diag[e] += 3.0 * d;
+            self.diag[e + 1] += 3.0 * d;
+            return;
+        }
+        self.diag[e] += 2.0 * d;
+        self.diag[e + 1] += 2.0 * d;
+        self.upper[e] += d;
+        self.lower[e] += d;
+    }
+
+    /// Replaces the rows and columns of the constrained `dofs` by those of the identity, which is
+    /// the same as removing them from the system (their right-hand side must be zero).
+    pub fn constrain(&mut self, dofs: &[usize]) {
+        for &dof in dofs {
+            let (i, k) = (dof / 3, dof % 3);
+            self.diag[i].row_mut(k).fill(0.0);
+            self.diag[i].column_mut(k).fill(0.0);
+            self.diag[i][(k, k)] = 1.0;
+            if i > 0 {
+                self.upper[i - 1].column_mut(k).fill(0.0);
+                self.lower[i - 1].row_mut(k).fill(0.0);
+            }
+            if i + 1 < self.blocks() {
+                self.upper[i].row_mut(k).fill(0.0);
+                self.lower[i].column_mut(k).fill(0.0);
+            }
+        }
+    }
+
+    /// `out = A x` (before factorization).
+    pub fn mul(&self, x: &[f64], out: &mut [f64]) {
+        debug_assert!(!self.factored);
+        let n = self.blocks();
+        for i in 0..n {
+            let mut y = self.diag[i] * block(x, i);
+            if i + 1 < n {
+                y += self.upper[i] * block(x, i + 1);
+            }
+            if i > 0 {
+                y += self.lower[i - 1] * block(x, i - 1);
+            }
+            out[3 * i..3 * i + 3].copy_from_slice(y.as_slice());
+        }
+    }
+
+    /// Row `dof` of `A` (before factorization) as its first column and the entries from there:
+    /// the 9 columns of the node's block row (6 at the first and last node, padded with zeros).
+    pub fn row_stencil(&self, dof: usize) -> (usize, [f64; 9]) {
+        debug_assert!(!self.factored);
+        let (i, k) = (dof / 3, dof % 3);
+        let mut entries = [0.0; 9];
+        let first = i.saturating_sub(1);
+        let blocks = [
+            (i > 0).then(|| &self.lower[i.wrapping_sub(1)]),
+            Some(&self.diag[i]),
+            (i + 1 < self.blocks()).then(|| &self.upper[i]),
+        ];
+        let mut at = 0;
+        for m in blocks.into_iter().flatten() {
+            for c in 0..3 {
+                entries[at + c] = m[(k, c)];
+            }
+            at += 3;
+        }
+        (3 * first, entries)
+    }
+}
