@@ -19,7 +19,8 @@
 //! over. If it does not contract, or the iteration ended on a Newton correction after a
 //! rejected chord, `J1` is assembled from the kept element tangents and factored: the exact
 //! solve. (When the iteration ends on a Newton correction, `J0` is already at an iterate
-//! within the tolerance and the first solve is exact.)
+//! within the tolerance and the first solve is exact.) From [`EXACT_FROM`] systems on, one
+//! factorization of `J1` costs less than refining each system, and the step solves exactly.
 use crate::model::element::ElementTangent;
 use crate::model::Rod;
 use crate::solver::vector::inf_norm;
@@ -32,6 +33,11 @@ pub const TOLERANCE: f64 = 1e-12;
 /// Refinements before the exact solve takes over; also where a refinement that does not
 /// halve the correction ends them.
 const MAX_REFINEMENTS: usize = 4;
+/// From this many systems on, a step assembles and factors `J1` once and solves each system
+/// once, instead of solving and refining each with `J0`: with one or two refinements per
+/// system, a factorization is cheaper from two systems on (callgrind, BuckledBeam, 10
+/// elements, T/64: see the README's Lyapunov table).
+pub const EXACT_FROM: usize = 2;
 
 /// Right-hand sides of the tangent map, their solutions and the element tangents of the last
 /// chord correction, `count` of them (0: the step solves none). Buffers are reserved outside
@@ -94,7 +100,7 @@ impl TangentMap {
         &mut self.tangents
     }
 
-    /// `y = J^-1 b` with a new factorization `jac`.
+    /// `y = J^-1 b` with the factorization `jac`.
     pub(super) fn solve(&mut self, jac: &BlockTridiagonal) {
         let n = self.count * self.dofs;
         self.solution[..n].copy_from_slice(&self.rhs[..n]);
@@ -116,10 +122,17 @@ impl TangentMap {
         Some(y)
     }
 
+    /// Whether the step solves with `J1` factored ([`TangentMap::solve_exactly`], or `J0` when
+    /// the iteration ends on a Newton correction) rather than refining: from [`EXACT_FROM`]
+    /// systems on.
+    pub(super) fn exact(&self) -> bool {
+        self.count >= EXACT_FROM
+    }
+
     /// After a new factorization `jac`: the first solve, unless it was `paired` with the
-    /// Newton correction's.
+    /// Newton correction's or the step solves exactly at its end.
     pub(super) fn solved_first(&mut self, jac: &BlockTridiagonal, paired: bool) {
-        if paired {
+        if paired || self.exact() {
             self.tangents_current = false;
             self.refinement_solved = false;
         } else {

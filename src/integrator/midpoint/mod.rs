@@ -280,9 +280,11 @@ impl Midpoint {
         self.update_held_rows();
         // Ended on a Newton correction, the factorization is at the iterate before it, which
         // passed the convergence test: the tangent map's first solve was exact.
-        if tangents && !ended_on_newton {
+        if tangents && ended_on_newton && self.tangents.exact() {
+            self.tangents.solve(&self.jac);
+        } else if tangents && !ended_on_newton {
             let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
-            if !self.tangents.refine(rod, &self.jac, a, c) {
+            if self.tangents.exact() || !self.tangents.refine(rod, &self.jac, a, c) {
                 self.tangents
                     .solve_exactly(rod, &self.dynamic_part, &mut self.linear)?;
                 stats.factorizations += 1;
