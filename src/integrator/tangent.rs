@@ -9,8 +9,9 @@
 //! `du_(n+1) = J^-1 (2 A du_n + 2/dt M dv_n) - du_n`, `dv_(n+1) = 2/dt (du_(n+1) - du_n) - dv_n`:
 //!
 //! one system with the converged step's Jacobian per tangent vector, which the step solves
-//! along with its own (`tangent_map.rs`: the Jacobian of its Newton iteration and one
-//! refinement, exact to about 1e-12). Held dofs are not part of the state (their motion is
+//! along with its own (`tangent_map.rs`: with one vector, the Jacobian of its Newton iteration
+//! and one or two refinements; with more, the converged Jacobian factored once; exact to about
+//! 1e-12). Held dofs are not part of the state (their motion is
 //! prescribed): their components stay zero.
 //!
 //! `k` tangent vectors are advanced together and re-orthonormalized after every sub-step

@@ -68,7 +68,7 @@ class CaseConfig:
     dense_steps: communication steps per period in the dense window; must divide `substeps`
         (a power of two keeps the results independent of the window); 0 takes
         :func:`default_dense_steps`.
-    lyapunov: also compute the largest exponent (the core's tangent map: about 1.5x the cost of
+    lyapunov: also compute the largest exponent (the core's tangent map: about 1.4x the cost of
         the sampled periods).
     align_periods: sampled periods in which the tangent vector only aligns with the most
         unstable direction; the exponent is averaged over the rest. 10 periods: the chaotic
