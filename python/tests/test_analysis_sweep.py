@@ -3,6 +3,9 @@ sorted by the parameter, and writes its CSV and PNG."""
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -45,6 +48,33 @@ def test_sweep_independent_of_workers(tmp_path: Path) -> None:
     assert len(samples.read_text().splitlines()) == 1 + 3 * 25
     png = plot_sweep("F", two, tmp_path / "sweep.png", chaos_threshold=0.05)
     assert png.stat().st_size > 1000
+
+
+@pytest.mark.usefixtures("fmu_paths")
+def test_command_line_sweep_leaves_no_extracted_fmu(tmp_path: Path) -> None:
+    """A sweep on a local cluster of two workers, as its own process with its own temporary
+    folder: afterwards no extracted FMU is left there (the client's is removed by its exit
+    handler, each worker's with its plugin's folder: worker processes end without exit
+    handlers)."""
+    from sweep_cases import tiny_cli_options
+
+    temp = tmp_path / "temp"
+    temp.mkdir()
+    out = tmp_path / "sweep"
+    args = ["sweep", "--param", "F", "--start", "0.4", "--stop", "2", "--count", "3"]
+    r = subprocess.run(
+        [sys.executable, "-m", "georod_tools", *args, *tiny_cli_options(BEAM_FMU)]
+        + ["--workers", "2", "--out", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+        env={**os.environ, "TMPDIR": str(temp)},
+    )
+    assert r.returncode == 0, r.stderr
+    assert (out / "results.jsonl").is_file()
+    left = [p.relative_to(temp) for p in temp.rglob("georod_*")]
+    assert left == [], f"left behind in the temporary folder: {left}"
 
 
 @pytest.mark.usefixtures("fmu_paths")

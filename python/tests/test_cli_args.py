@@ -99,6 +99,33 @@ def test_help(module: str, args: list[str], capsys: pytest.CaptureFixture[str]) 
     assert out.startswith("usage: ") and "--help" in out
 
 
+EXIT_NOW = """
+import atexit, sys, threading, time
+from georod_tools.cli import exit_now
+atexit.register(lambda: print("handler ran", flush=True))
+if sys.argv[1] == "thread":
+    threading.Thread(target=lambda: (time.sleep(0.2), print("thread done"))).start()
+print("buffered output", end="")
+exit_now(3)
+"""
+
+
+@pytest.mark.parametrize("mode", ["plain", "thread"])
+def test_exit_now_keeps_handlers_output_and_threads(mode: str) -> None:
+    """The entry point's quick exit keeps the status, runs the exit handlers, flushes what is
+    buffered, and waits for a running (non-daemon) thread instead of cutting it off."""
+    r = subprocess.run(
+        [sys.executable, "-c", EXIT_NOW, mode],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
+    )
+    assert r.returncode == 3, r.stderr
+    assert "buffered output" in r.stdout and "handler ran" in r.stdout
+    assert ("thread done" in r.stdout) == (mode == "thread")
+
+
 def test_help_through_python_m() -> None:
     r = subprocess.run(
         [sys.executable, "-m", "georod_tools", "sweep", "--help"],

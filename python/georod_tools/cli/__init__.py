@@ -17,9 +17,13 @@ FMU's message.
 from __future__ import annotations
 
 import argparse
+import atexit
 import importlib
+import os
 import sys
+import threading
 from collections.abc import Sequence
+from typing import NoReturn
 
 PROG = "georod-tools"
 #: The subcommands, in the order `--help` lists them (modules of this package).
@@ -58,3 +62,28 @@ def main(argv: Sequence[str] | None = None) -> int:
     except (RuntimeError, ValueError, OSError) as e:
         print(f"{PROG}: error: {e}", file=sys.stderr)
         return 1
+
+
+def entry() -> NoReturn:
+    """The console entry point (``georod-tools``, ``python -m georod_tools``): :func:`main`,
+    then :func:`exit_now` with its status."""
+    exit_now(main())
+
+
+def exit_now(status: int) -> NoReturn:
+    """Ends the process with `status` once the exit handlers have run (temporary folders,
+    Dask's and logging's cleanup) and stdout and stderr are flushed, without Python's own
+    teardown of every imported module: with Dask, matplotlib and numpy loaded that takes
+    0.2-0.3 s, and nothing of this package needs it. While a thread other than the main one
+    still runs (and is not a daemon), the normal exit waits for it instead."""
+    others = [t for t in threading.enumerate() if t is not threading.main_thread()]
+    run_handlers = getattr(atexit, "_run_exitfuncs", None)  # CPython
+    if run_handlers is None or any(t.is_alive() and not t.daemon for t in others):
+        sys.exit(status)
+    run_handlers()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):  # a closed pipe (georod-tools ... | head)
+            pass
+    os._exit(status)

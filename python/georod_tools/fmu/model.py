@@ -3,7 +3,9 @@ keeps for reuse.
 
 Extraction and loading happen once per path and file version (:meth:`FmuModel.load`, cached per
 process: a Dask worker loads an FMU once, whatever the number of cases it runs); the extracted
-folder is removed when the process exits. The model also keeps the instances given back after use
+folder is removed when the process exits, or with the folder given as `workdir` (a Dask worker's
+processes end without running exit handlers: its FMU goes into the worker plugin's folder,
+removed when the plugin is torn down). The model also keeps the instances given back after use
 (:func:`georod_tools.fmu.instance.lend`).
 """
 
@@ -44,11 +46,11 @@ class FmuModel:
     _cache: dict[tuple[str, float], FmuModel] = {}
     lock = threading.Lock()
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, workdir: str | Path | None = None) -> None:
         self.path = Path(path)
         if not self.path.is_file():
             raise FileNotFoundError(f"FMU {self.path} not found (build it with scripts/build_fmus)")
-        self.unzipdir = Path(tempfile.mkdtemp(prefix=f"georod_{self.path.stem}_"))
+        self.unzipdir = Path(tempfile.mkdtemp(prefix=f"georod_{self.path.stem}_", dir=workdir))
         atexit.register(shutil.rmtree, self.unzipdir, True)
         extract(str(self.path), unzipdir=str(self.unzipdir))
         self.md = read_model_description(str(self.unzipdir))
@@ -68,14 +70,23 @@ class FmuModel:
         self.idle: list[Any] = []
 
     @classmethod
-    def load(cls, path: str | Path) -> FmuModel:
-        """The cached model of `path` (extracted again when the file changed)."""
+    def load(cls, path: str | Path, workdir: str | Path | None = None) -> FmuModel:
+        """The cached model of `path` (extracted again when the file changed); a first load
+        extracts into a new folder in `workdir` (default: the system's temporary folder)."""
         p = Path(path).resolve()
         key = (str(p), p.stat().st_mtime if p.exists() else 0.0)
         with cls.lock:
             if key not in cls._cache:
-                cls._cache[key] = cls(p)
+                cls._cache[key] = cls(p, workdir)
             return cls._cache[key]
+
+    @classmethod
+    def forget(cls, path: str | Path) -> None:
+        """Drops the cached models of `path` (before their folder is removed)."""
+        p = str(Path(path).resolve())
+        with cls.lock:
+            for key in [k for k in cls._cache if k[0] == p]:
+                del cls._cache[key]
 
     def variable(self, name: str) -> Variable:
         """The variable `name`; KeyError naming the FMU's variables of that kind otherwise."""

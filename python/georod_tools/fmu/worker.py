@@ -108,7 +108,9 @@ class FmuPlugin(WorkerPlugin):
             got = hashlib.sha256(path.read_bytes()).hexdigest()
             if got != p.sha256:
                 raise FmuUnavailableError(f"sha256 {got} of the written file != {p.sha256}")
-            model = FmuModel.load(path)
+            # Extracted inside the plugin's folder: a worker process ends without exit
+            # handlers, so only teardown's removal of the folder cleans up after it.
+            model = FmuModel.load(path, workdir=self.folder)
             _check_library(model)
             LOAD_COUNT += 1
             _LOADED[p.sha256] = str(path)
@@ -120,6 +122,7 @@ class FmuPlugin(WorkerPlugin):
     def teardown(self, worker: Any) -> None:
         _LOADED.pop(self.payload.sha256, None)
         if self.folder:
+            FmuModel.forget(Path(self.folder) / self.payload.name)
             shutil.rmtree(self.folder, ignore_errors=True)
 
 
