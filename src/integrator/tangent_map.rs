@@ -8,11 +8,13 @@
 //! by the Newton correction, which makes `y1 = J0^-1 b` off by a relative
 //! `rho = |J0^-1 (J1 - J0)|`: 1e-7 to 1e-5 at T/180 on the buckled beam, up to 1e-4 at T/128.
 //! Iterative refinement, `y <- y + J0^-1 (b - J1 y)`, divides the error by `1/rho` per pass,
-//! and `J1 y` needs no assembly: the chord's residual evaluation keeps each element's tangent
-//! (ten numbers; the sines and cosines are those of the residual), and `J1 y` is `A y`
-//! (matrix-free) plus the element tangents times `y`. A step thus costs one solve per
-//! right-hand side with `J0` and one or two refinements, instead of assembling and factoring
-//! a second Jacobian.
+//! and its residuals need no assembly: both residual evaluations keep each element's tangent
+//! (ten numbers; the sines and cosines are those of the residual), and since `J0 y1 = b`,
+//! `b - J1 y1 = -(J1 - J0) y1 = -(K1 - K0) y1 / 2` (`A` cancels), and after each correction
+//! `c` the next residual is `-(K1 - K0) c / 2`: the change of the element tangents times a
+//! vector, matrix-free, which also keeps the residual free of the cancellation of two full
+//! products. A step thus costs one solve per right-hand side with `J0` and one or two
+//! refinements, instead of assembling and factoring a second Jacobian.
 //!
 //! The refinement stops when the error it leaves, estimated like the Newton iteration's from
 //! the contraction of its corrections, is below [`TOLERANCE`] of the solution a hundred times
@@ -48,12 +50,15 @@ pub struct TangentMap {
     dofs: usize,
     rhs: Vec<f64>,
     solution: Vec<f64>,
-    /// The element tangents at the last chord correction's iterate.
+    /// The element tangents at the last chord correction's iterate (`K1`).
     tangents: Vec<ElementTangent>,
+    /// The element tangents at the iterate of the current factorization (`K0`).
+    newton: Vec<ElementTangent>,
     /// Whether `tangents` belong to the current factorization (a chord evaluation since).
     tangents_current: bool,
-    /// Scratch for the refinement's residual.
+    /// Scratch for the refinement's residual, and the correction before it.
     scratch: Vec<f64>,
+    correction: Vec<f64>,
     /// Whether `scratch` holds the first refinement's correction of the one system, solved
     /// with the last chord correction ([`TangentMap::paired_refinement`]).
     refinement_solved: bool,
@@ -67,7 +72,10 @@ impl TangentMap {
         self.solution.resize(count * self.dofs, 0.0);
         self.tangents
             .resize(rod.elements.len(), ElementTangent::default());
+        self.newton
+            .resize(rod.elements.len(), ElementTangent::default());
         self.scratch.resize(self.dofs, 0.0);
+        self.correction.resize(self.dofs, 0.0);
         self.count = 0;
     }
 
@@ -98,6 +106,12 @@ impl TangentMap {
     pub(super) fn element_tangents(&mut self) -> &mut [ElementTangent] {
         self.tangents_current = true;
         &mut self.tangents
+    }
+
+    /// Where a Newton correction's evaluation keeps its element tangents, when the step
+    /// refines ([`TangentMap::refine`]; not when it solves exactly).
+    pub(super) fn newton_tangents(&mut self) -> Option<&mut [ElementTangent]> {
+        (self.count > 0 && !self.exact()).then_some(&mut self.newton[..])
     }
 
     /// `y = J^-1 b` with the factorization `jac`.
@@ -141,38 +155,33 @@ impl TangentMap {
     }
 
     /// With one system and the element tangents of this chord evaluation: the first
-    /// refinement's residual `b - A y - K y / 2` (`A = a M + c C`), for the chord correction to
-    /// solve with its own; else `None`.
-    pub(super) fn paired_refinement(&mut self, rod: &Rod, a: f64, c: f64) -> Option<&mut [f64]> {
+    /// refinement's residual `b - J1 y = -(K1 - K0) y / 2`, for the chord correction to solve
+    /// with its own; else `None`.
+    pub(super) fn paired_refinement(&mut self, rod: &Rod) -> Option<&mut [f64]> {
         self.refinement_solved = false;
         if self.count != 1 || !self.tangents_current {
             return None;
         }
-        self.refinement_residual(rod, 0, a, c);
+        let tangents = (&self.tangents[..], &self.newton[..]);
+        refinement_residual(
+            rod,
+            tangents,
+            &self.solution[..self.dofs],
+            &mut self.scratch,
+        );
         self.refinement_solved = true;
         Some(&mut self.scratch)
     }
 
-    /// `b_j - A y_j - K y_j / 2` into `scratch`, constrained entries zero.
-    fn refinement_residual(&mut self, rod: &Rod, j: usize, a: f64, c: f64) {
-        let range = j * self.dofs..(j + 1) * self.dofs;
-        let r = &mut self.scratch;
-        r.copy_from_slice(&self.rhs[range.clone()]);
-        let y = &self.solution[range];
-        rod.add_bracket_times(((-a, y), (0.0, y)), -c, None, r);
-        rod.add_tangent_times(&self.tangents, y, r, -0.5);
-        rod.zero_constrained(r);
-    }
-
-    /// Refines the solutions towards `J1^-1 b` with `J0` factored in `jac` (`A = a M + c C`).
-    /// Returns false where that cannot be trusted (no element tangents for this
-    /// factorization, or no contraction): the caller then solves exactly
-    /// ([`TangentMap::solve_exactly`]).
-    pub(super) fn refine(&mut self, rod: &Rod, jac: &BlockTridiagonal, a: f64, c: f64) -> bool {
+    /// Refines the solutions towards `J1^-1 b` with `J0` factored in `jac`. Returns false where
+    /// that cannot be trusted (no element tangents for this factorization, or no
+    /// contraction): the caller then solves exactly ([`TangentMap::solve_exactly`]).
+    pub(super) fn refine(&mut self, rod: &Rod, jac: &BlockTridiagonal) -> bool {
         if !self.tangents_current {
             return false;
         }
         let n = self.dofs;
+        let tangents = (&self.tangents[..], &self.newton[..]);
         for j in 0..self.count {
             let range = j * n..(j + 1) * n;
             let size = inf_norm(&self.solution[range.clone()]);
@@ -185,7 +194,14 @@ impl TangentMap {
             for pass in 0..MAX_REFINEMENTS {
                 // The first pass of a single system came with the chord correction.
                 if !(pass == 0 && j == 0 && self.refinement_solved) {
-                    self.refinement_residual(rod, j, a, c);
+                    if pass == 0 {
+                        let y = &self.solution[range.clone()];
+                        refinement_residual(rod, tangents, y, &mut self.scratch);
+                    } else {
+                        // The correction just applied (in `scratch`) gives the next residual.
+                        std::mem::swap(&mut self.scratch, &mut self.correction);
+                        refinement_residual(rod, tangents, &self.correction, &mut self.scratch);
+                    }
                     jac.solve_in_place(&mut self.scratch);
                 }
                 let (r, y) = (&self.scratch, &mut self.solution[range.clone()]);
@@ -227,4 +243,17 @@ impl TangentMap {
         self.solve(jac);
         Ok(())
     }
+}
+
+/// A refinement's residual `b - J1 y` from the last vector solved with `J0` (the first
+/// solution, or the last correction `x`): `-(K1 - K0) x / 2` over the free dofs, with `K1`, `K0`
+/// the element tangents `(k1, k0)` of the chord and Newton iterates (see the module doc).
+fn refinement_residual(
+    rod: &Rod,
+    tangents: (&[ElementTangent], &[ElementTangent]),
+    x: &[f64],
+    out: &mut [f64],
+) {
+    rod.tangent_change_times(tangents, x, out, -0.5);
+    rod.zero_constrained(out);
 }

@@ -34,6 +34,21 @@ impl ElementTangent {
         Vector6::new(-f0, -f1, ma, f0, f1, mb)
     }
 
+    /// `self - other`, entry by entry (the change of an element's tangent between two states).
+    pub fn minus(&self, other: &ElementTangent) -> ElementTangent {
+        let sub = |a: &[f64], b: &[f64], out: &mut [f64]| {
+            for ((o, a), b) in out.iter_mut().zip(a).zip(b) {
+                *o = a - b;
+            }
+        };
+        let mut d = ElementTangent::default();
+        sub(&self.t, &other.t, &mut d.t);
+        sub(&self.h[0], &other.h[0], &mut d.h[0]);
+        sub(&self.h[1], &other.h[1], &mut d.h[1]);
+        sub(&self.rot, &other.rot, &mut d.rot);
+        d
+    }
+
     /// The node blocks `(K_aa, K_ab, K_bb)`; `K_ba = K_ab^T`.
     pub fn blocks(&self) -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>) {
         let [t00, t01, t11] = self.t;

@@ -14,6 +14,8 @@ use nalgebra::Vector2;
 
 #[path = "rod_energy.rs"]
 mod rod_energy;
+#[path = "rod_tangent.rs"]
+mod rod_tangent;
 
 /// Dof index within a node.
 pub const U1: usize = 0;
@@ -168,50 +170,6 @@ impl Rod {
         assemble(f, &self.elements, u, |_, el, ue, trig| {
             el.internal_force_with(&self.section, ue, trig)
         });
-    }
-
-    /// `f = f_int(u)` (overwrites) and `jac += scale * K_T(u)`.
-    pub fn internal_force_and_tangent(
-        &self,
-        u: &[f64],
-        f: &mut [f64],
-        jac: &mut BlockTridiagonal,
-        scale: f64,
-    ) {
-        let (mut fe, mut ke) = (Vector6::zeros(), ElementTangent::default());
-        assemble(f, &self.elements, u, |e, el, ue, trig| {
-            el.force_and_tangent_into(&self.section, ue, trig, &mut fe, &mut ke);
-            jac.add_element(e, &ke, scale);
-            fe
-        });
-    }
-
-    /// `f = f_int(u)` (overwrites) and each element's tangent into `tangents` (one per
-    /// element), not assembled.
-    pub fn internal_force_and_element_tangents(
-        &self,
-        u: &[f64],
-        f: &mut [f64],
-        tangents: &mut [ElementTangent],
-    ) {
-        let mut fe = Vector6::zeros();
-        assemble(f, &self.elements, u, |e, el, ue, trig| {
-            el.force_and_tangent_into(&self.section, ue, trig, &mut fe, &mut tangents[e]);
-            fe
-        });
-    }
-
-    /// `out += scale * K y`, `K` assembled from the element `tangents` (matrix-free).
-    pub fn add_tangent_times(
-        &self,
-        tangents: &[ElementTangent],
-        y: &[f64],
-        out: &mut [f64],
-        scale: f64,
-    ) {
-        for (e, ke) in tangents.iter().enumerate() {
-            add_element_vector(out, e, &(scale * ke.mul(&Self::element_dofs(y, e))));
-        }
     }
 
     /// `f =` the energy-momentum discrete gradient between `ua` and `ub` (overwrites).

@@ -217,9 +217,8 @@ impl Midpoint {
                 };
                 self.residual(rod, state, dt, tangent);
                 // The tangent map's first refinement solved with the chord correction.
-                let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
                 let refinement = if tangents {
-                    self.tangents.paired_refinement(rod, a, c)
+                    self.tangents.paired_refinement(rod)
                 } else {
                     None
                 };
@@ -280,16 +279,14 @@ impl Midpoint {
         self.update_held_rows();
         // Ended on a Newton correction, the factorization is at the iterate before it, which
         // passed the convergence test: the tangent map's first solve was exact.
-        if tangents && ended_on_newton && self.tangents.exact() {
+        let exact = self.tangents.exact();
+        if tangents && ended_on_newton && exact {
             self.tangents.solve(&self.jac);
-        } else if tangents && !ended_on_newton {
-            let (a, c) = (2.0 / (dt * dt), 1.0 / dt);
-            if self.tangents.exact() || !self.tangents.refine(rod, &self.jac, a, c) {
-                self.tangents
-                    .solve_exactly(rod, &self.dynamic_part, &mut self.linear)?;
-                stats.factorizations += 1;
-                stats.tangent_factorizations += 1;
-            }
+        } else if tangents && !ended_on_newton && (exact || !self.tangents.refine(rod, &self.jac)) {
+            self.tangents
+                .solve_exactly(rod, &self.dynamic_part, &mut self.linear)?;
+            stats.factorizations += 1;
+            stats.tangent_factorizations += 1;
         }
         let dofs = state.u.iter_mut().zip(state.v.iter_mut()).zip(&self.du);
         match self.scheme {

@@ -77,7 +77,21 @@ impl Midpoint {
                     *um = u + 0.5 * d;
                 }
                 if let Some(jac) = jac {
-                    rod.internal_force_and_tangent(&self.u_mid, &mut self.residual, jac, 0.5);
+                    match self.tangents.newton_tangents() {
+                        Some(kept) => rod.internal_force_and_tangent_kept(
+                            &self.u_mid,
+                            &mut self.residual,
+                            jac,
+                            0.5,
+                            kept,
+                        ),
+                        None => rod.internal_force_and_tangent(
+                            &self.u_mid,
+                            &mut self.residual,
+                            jac,
+                            0.5,
+                        ),
+                    }
                 } else if tangent == Tangent::Elements {
                     rod.internal_force_and_element_tangents(
                         &self.u_mid,
