@@ -18,8 +18,8 @@
 //!
 //! The refinement stops when the error it leaves, estimated like the Newton iteration's from
 //! the contraction of its corrections, is below [`TOLERANCE`] of the solution a hundred times
-//! over. If it does not contract, or the iteration ended on a Newton correction after a
-//! rejected chord, `J1` is assembled from the kept element tangents and factored: the exact
+//! over. If it does not contract (or no chord evaluation kept tangents since the current
+//! factorization), `J1` is assembled from the kept element tangents and factored: the exact
 //! solve. (When the iteration ends on a Newton correction, `J0` is already at an iterate
 //! within the tolerance and the first solve is exact.) From [`EXACT_FROM`] systems on, one
 //! factorization of `J1` costs less than refining each system, and the step solves exactly.
