@@ -110,7 +110,8 @@ def local_cluster(workers: int) -> Any:
     """`workers` single-threaded processes, each holding its running case and the next one
     (worker saturation 2: the next case starts without a round trip to the scheduler, which
     cost 3 ms per case, a tenth of a short case; a worker that dies takes its running case
-    with it, and the one it held is run elsewhere).
+    with it, and the one it held is run again: for Dask both were on the lost worker, and each
+    counts one of its allowed failures).
 
     On Linux the worker processes are forked from this one, which has imported everything
     they need: a worker is up in 0.07 s instead of the 0.4 s of a fresh interpreter importing
