@@ -1,5 +1,6 @@
-"""A Dask sweep gives identical results with 1 and 2 workers (tiny sweep: 3 values, short runs),
-sorted by the parameter, and writes its CSV and PNG."""
+"""A Dask sweep gives identical results with 1 and 2 workers (tiny sweep: 5 values, short runs),
+sorted by the parameter, whether cases travel in chunks or one by one, and writes its CSV and
+PNG; how cases are cut into chunks."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from georod_tools.analysis.sweep import sweep_values
+from georod_tools.analysis.sweep import MAX_CHUNK, chunk_sizes, sweep_values
 
 REPO = Path(__file__).resolve().parents[2]
 BEAM_FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
@@ -24,6 +25,31 @@ def test_sweep_values() -> None:
         sweep_values(0.0, 1.0, 0)
 
 
+@pytest.mark.parametrize("count", [0, 1, 2, 5, 17, 100, 1000])
+@pytest.mark.parametrize("slots", [1, 2, 3, 16])
+def test_chunk_sizes_cover_every_case_and_shrink_to_single_cases(count: int, slots: int) -> None:
+    sizes = chunk_sizes(count, slots)
+    assert sum(sizes) == count
+    assert all(1 <= s <= MAX_CHUNK for s in sizes)
+    assert sizes == sorted(sizes, reverse=True)  # largest first
+    # guided: no chunk holds more than 1 / (2 slots) of the cases left when it is cut, so the
+    # work after it keeps the other slots busy; the last 2 slots cases go one by one
+    left = count
+    for s in sizes:
+        assert s == 1 or s <= left / (2 * slots)
+        left -= s
+    assert sizes[-min(count, 2 * slots) :] == [1] * min(count, 2 * slots)
+
+
+def test_chunk_sizes_of_the_bifurcation_diagram() -> None:
+    # 100 cases on 2 workers: 21 tasks instead of 100
+    assert chunk_sizes(100, 2) == [8] * 9 + [7, 5, 4, 3, 2] + [1] * 7
+    with pytest.raises(ValueError, match="slots = 0"):
+        chunk_sizes(10, 0)
+    with pytest.raises(ValueError, match="count = -1"):
+        chunk_sizes(-1, 2)
+
+
 @pytest.mark.usefixtures("fmu_paths")  # builds the FMUs when missing or stale
 def test_sweep_independent_of_workers(tmp_path: Path) -> None:
     from georod_tools.analysis.case import CaseConfig
@@ -34,18 +60,21 @@ def test_sweep_independent_of_workers(tmp_path: Path) -> None:
     base = CaseConfig(
         fmu=str(BEAM_FMU), elements=6, substeps=16, transient_periods=10, sample_periods=25
     )
-    values = [2.0, 0.4, 0.9]  # unsorted on purpose
+    values = [2.0, 0.4, 0.9, 1.3, 0.6]  # unsorted on purpose
+    # one worker runs the first two cases as one task, two workers run each on its own
+    assert chunk_sizes(len(values), 1) == [2, 1, 1, 1]
+    assert chunk_sizes(len(values), 2) == [1, 1, 1, 1, 1]
     one = run_sweep(base, "F", values, workers=1, progress=False)
     two = run_sweep(base, "F", values, workers=2, progress=False)
-    assert [r.config.F for r in one] == [0.4, 0.9, 2.0]
-    assert [r.config.F for r in two] == [0.4, 0.9, 2.0]
+    assert [r.config.F for r in one] == sorted(values)
+    assert [r.config.F for r in two] == sorted(values)
     for a, b in zip(one, two, strict=True):
         assert np.array_equal(a.samples, b.samples)
         assert a.exponent_per_period == b.exponent_per_period
         assert a.classification.label == b.classification.label
     summary, samples = write_sweep_csv("F", two, tmp_path / "sweep.csv")
-    assert len(summary.read_text().splitlines()) == 4
-    assert len(samples.read_text().splitlines()) == 1 + 3 * 25
+    assert len(summary.read_text().splitlines()) == 1 + len(values)
+    assert len(samples.read_text().splitlines()) == 1 + len(values) * 25
     png = plot_sweep("F", two, tmp_path / "sweep.png", chaos_threshold=0.05)
     assert png.stat().st_size > 1000
 

@@ -31,14 +31,16 @@ def test_sweep_records_fmu_exception_and_lost_worker(beam_fmu: Path) -> None:
     import distributed  # noqa: F401 - registers the distributed config
 
     from georod_tools.analysis.case import run_case
-    from georod_tools.analysis.sweep import sweep
+    from georod_tools.analysis.sweep import chunk_sizes, sweep
     from georod_tools.report.figures import sweep_figure
 
     base = tiny_config(beam_fmu)
-    values = [0.4, RAISES_AT, DISCARD_F, 1.5, EXITS_AT]
+    # The first chunk holds the case that kills its worker and 0.4, which must still succeed:
+    # the lost chunk runs again case by case.
+    values = [EXITS_AT, 0.4, RAISES_AT, DISCARD_F, 1.5]
+    assert chunk_sizes(len(values), 1)[0] == 2
     seen: list[float] = []
-    # A lost worker's case fails after one retry (default: 3). Not at once: the worker also
-    # holds its next case (worker saturation), which dies with it and must run again.
+    # A lost task fails after one retry (default: 3; fewer worker restarts).
     with dask.config.set({"distributed.scheduler.allowed-failures": 1}):
         out = sweep(
             base,

@@ -12,9 +12,15 @@ installed, not the FMU file: the FMU travels to them as bytes, see
 :mod:`georod_tools.fmu.worker`). A worker loads the FMU once and reuses its instances from case
 to case (:meth:`georod_tools.fmu.FmuModel.instance`).
 
+Cases travel in chunks (:func:`chunk_sizes`): Dask costs 5-10 ms of scheduler, client and worker
+time per task, 5-10 % of a 0.1 s case, and on a machine with as many workers as cores that time
+comes out of the cases'. Chunks shrink as the sweep goes (guided scheduling: the first ones are
+large, the last cases go one by one), so the workers still finish together.
+
 A case that fails (the FMU returns fmi2Discard or fmi2Error, a Python exception, a lost worker or
 one that cannot load the FMU) becomes a :class:`~georod_tools.analysis.failure.CaseFailure` with
-its reason; :func:`sweep` always finishes and returns results and failures, :func:`run_sweep`
+its reason (a chunk lost with its worker runs again case by case, so that only a case that kills
+its worker fails); :func:`sweep` always finishes and returns results and failures, :func:`run_sweep`
 (the studies' entry) raises after the whole sweep when any case failed.
 """
 
@@ -48,6 +54,8 @@ from georod_tools.fmu.worker import (
 __all__ = [
     "CaseFailure",
     "SweepOutcome",
+    "chunk_sizes",
+    "run_chunk_on_worker",
     "run_on_worker",
     "run_sweep",
     "sweep",
@@ -59,6 +67,29 @@ __all__ = [
 SWEEPABLE = ("F", "Omega")
 
 CaseFn = Callable[[CaseConfig], CaseResult]
+
+#: Most cases in one Dask task: what a worker lost mid-chunk takes with it before the chunk runs
+#: again case by case, and how far apart the progress bar's updates may be.
+MAX_CHUNK = 8
+#: Guided scheduling: a chunk holds at most 1 / (GUIDE x slots) of the cases left when it is
+#: cut, so that while a slot runs it the others have work queued, and the chunks shrink to
+#: single cases at the end, where the slots then finish within about one case of each other.
+GUIDE = 2
+
+
+def chunk_sizes(count: int, slots: int) -> list[int]:
+    """How `count` cases are cut into Dask tasks for `slots` parallel workers: each chunk
+    ``remaining // (GUIDE * slots)`` cases, between 1 and :data:`MAX_CHUNK`, largest first.
+    (100 cases, 2 workers: 9 chunks of 8, then 7, 5, 4, 3, 2 and 7 single cases: 21 tasks.)"""
+    if count < 0 or slots < 1:
+        raise ValueError(f"count = {count} must be >= 0 and slots = {slots} >= 1")
+    sizes: list[int] = []
+    left = count
+    while left > 0:
+        size = min(MAX_CHUNK, max(1, left // (GUIDE * slots)))
+        sizes.append(size)
+        left -= size
+    return sizes
 
 
 def sweep_values(start: float, stop: float, count: int) -> list[float]:
@@ -96,6 +127,17 @@ def run_on_worker(
     return result
 
 
+def run_chunk_on_worker(
+    cfgs: Sequence[CaseConfig],
+    values: Sequence[float],
+    sha256: str,
+    name: str,
+    case_fn: CaseFn,
+) -> list[CaseResult | CaseFailure]:
+    """:func:`run_on_worker` for each case of a chunk, in order."""
+    return [run_on_worker(c, v, sha256, name, case_fn) for c, v in zip(cfgs, values, strict=True)]
+
+
 @dataclass
 class SweepOutcome:
     """Results sorted by value, failures sorted by value, and each worker's state (address ->
@@ -107,11 +149,12 @@ class SweepOutcome:
 
 
 def local_cluster(workers: int) -> Any:
-    """`workers` single-threaded processes, each holding its running case and the next one
-    (worker saturation 2: the next case starts without a round trip to the scheduler, which
-    cost 3 ms per case, a tenth of a short case; a worker that dies takes its running case
-    with it, and the one it held is run again: for Dask both were on the lost worker, and each
-    counts one of its allowed failures).
+    """`workers` single-threaded processes, each holding only the chunk it runs (worker
+    saturation 1; Dask's default 1.1 gives a single-threaded worker a second task to hold). A
+    worker that dies then takes only its running chunk with it: a task held behind it would
+    also count the death as one of its allowed failures, so that a case that kills its worker
+    again and again could make an innocent case fail. The round trip to the scheduler for the
+    next chunk (3 ms) is what the chunks make rare.
 
     On Linux the worker processes are forked from this one, which has imported everything
     they need: a worker is up in 0.07 s instead of the 0.4 s of a fresh interpreter importing
@@ -125,7 +168,7 @@ def local_cluster(workers: int) -> Any:
 
     method = "fork" if sys.platform.startswith("linux") else "spawn"
     config = {
-        "distributed.scheduler.worker-saturation": 2.0,
+        "distributed.scheduler.worker-saturation": 1.0,
         "distributed.worker.multiprocessing-method": method,
         # Dask's sampling profiler takes the worker's GIL every 10 ms to walk the running
         # case's stack, which is in the FMU anyway: 4 % of a case's time.
@@ -199,40 +242,66 @@ def sweep(
         if len(good) < len(outcome.workers):
             restrict = {"workers": good, "allow_other_workers": True}
         vals = [c.value(param) for c in configs]
-        futures = client.map(
-            run_on_worker,
-            configs,
-            vals,
-            sha256=payload.sha256,
-            name=payload.name,
-            case_fn=case_fn,
-            pure=False,
-            **restrict,
-        )
-        index = {f.key: i for i, f in enumerate(futures)}
+        slots = sum(client.nthreads().get(a, 1) for a in good) or 1
+        sizes = chunk_sizes(len(configs), slots)
+
+        def submit(cases: list[int], priority: int) -> Any:
+            return client.submit(
+                run_chunk_on_worker,
+                [configs[i] for i in cases],
+                [vals[i] for i in cases],
+                sha256=payload.sha256,
+                name=payload.name,
+                case_fn=case_fn,
+                pure=False,
+                # Dask runs the highest priority first: the chunks in order, largest first.
+                priority=priority,
+                **restrict,
+            )
+
+        chunks: dict[str, list[int]] = {}
+        futures = []
+        start = 0
+        for k, size in enumerate(sizes):
+            cases = list(range(start, start + size))
+            start += size
+            fut = submit(cases, len(sizes) - k)
+            chunks[fut.key] = cases
+            futures.append(fut)
         bar = None
         if progress:
             from tqdm import tqdm
 
-            total = progress_total or len(futures)
+            total = progress_total or len(configs)
             bar = stack.enter_context(
-                tqdm(total=total, initial=total - len(futures), desc=f"sweep {param}", unit="case")
+                tqdm(total=total, initial=total - len(configs), desc=f"sweep {param}", unit="case")
             )
-        for fut in as_completed(futures):
-            i = index[fut.key]
+        finished = as_completed(futures)
+        for fut in finished:
+            cases = chunks.pop(fut.key)
             try:
-                got = fut.result()
+                got_all = fut.result()
             except Exception as e:  # noqa: BLE001 - worker lost (KilledWorker), cancelled, ...
-                got = CaseFailure(vals[i], FAIL_WORKER, f"{type(e).__name__}: {e}")
+                fut.release()
+                if len(cases) > 1:
+                    # Lost with its worker: each case runs again on its own, so that only a
+                    # case that kills its worker fails, not the others of its chunk.
+                    for i in cases:
+                        again = submit([i], len(sizes) + 1)
+                        chunks[again.key] = [i]
+                        finished.add(again)
+                    continue
+                got_all = [CaseFailure(vals[cases[0]], FAIL_WORKER, f"{type(e).__name__}: {e}")]
             fut.release()
-            if isinstance(got, CaseFailure):
-                outcome.failures.append(got)
-            else:
-                outcome.results.append(got)
-            if on_done is not None:
-                on_done(got)
-            if bar is not None:
-                bar.update(1)
+            for got in got_all:
+                if isinstance(got, CaseFailure):
+                    outcome.failures.append(got)
+                else:
+                    outcome.results.append(got)
+                if on_done is not None:
+                    on_done(got)
+                if bar is not None:
+                    bar.update(1)
     outcome.results.sort(key=lambda r: r.config.value(param))
     outcome.failures.sort(key=lambda f: f.value)
     return outcome
