@@ -279,10 +279,13 @@ def sweep(
         finished = as_completed(futures)
         for fut in finished:
             cases = chunks.pop(fut.key)
+            lost = None
             try:
                 got_all = fut.result()
             except Exception as e:  # noqa: BLE001 - worker lost (KilledWorker), cancelled, ...
-                fut.release()
+                lost = f"{type(e).__name__}: {e}"
+            fut.release()
+            if lost is not None:
                 if len(cases) > 1:
                     # Lost with its worker: each case runs again on its own, so that only a
                     # case that kills its worker fails, not the others of its chunk.
@@ -291,8 +294,7 @@ def sweep(
                         chunks[again.key] = [i]
                         finished.add(again)
                     continue
-                got_all = [CaseFailure(vals[cases[0]], FAIL_WORKER, f"{type(e).__name__}: {e}")]
-            fut.release()
+                got_all = [CaseFailure(vals[cases[0]], FAIL_WORKER, lost)]
             for got in got_all:
                 if isinstance(got, CaseFailure):
                     outcome.failures.append(got)
