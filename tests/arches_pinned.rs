@@ -5,7 +5,7 @@
 //! returns to the same equilibrium), while the same disturbance of z2 sends the arch to z1 or z3.
 //! The natural frequencies about z1 and z3 are real, z2 has negative `omega^2`.
 //!
-//! Run: `cargo test --release --test arches_pinned -- --nocapture`
+//! Run: `cargo test --profile quick --test arches_pinned -- --nocapture`
 use georod::integrator::continuation::{
     equilibria_at_load, follow_both_ways, ContinuationSettings, Equilibrium,
 };

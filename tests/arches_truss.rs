@@ -30,7 +30,7 @@
 //! bar formula, at v = 0.63 against 0.42; 17x off at worst along the path), so a thin continuous rod with a rigid joint does not
 //! reproduce the pin-jointed truss at this mesh, and finer meshes buckle the bars.
 //!
-//! Run: `cargo test --release --test arches_truss -- --nocapture`
+//! Run: `cargo test --profile quick --test arches_truss -- --nocapture`
 use georod::integrator::continuation::{
     equilibria_at_load, follow_path, refine_critical_points, ContinuationSettings, CriticalKind,
 };

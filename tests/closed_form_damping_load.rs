@@ -18,7 +18,7 @@
 //!   times the mass matrix applied to a uniform vector, so the rod translates rigidly with
 //!   `v' + c v = -(F / rho A) cos(Omega t)`.
 //!
-//! Run: `cargo test --release --test closed_form_damping_load -- --nocapture`
+//! Run: `cargo test --profile quick --test closed_form_damping_load -- --nocapture`
 mod common;
 
 use common::{loads, max_abs, Table};

@@ -13,7 +13,7 @@
 //! agrees with the formulas to ~1e-9. The loads are the nodal forces of the rod's own load routines (uniform: `q l / 2`
 //! per element end; point: on the midspan node), which the FMU scenes use.
 //!
-//! Run: `cargo test --release --test closed_form_static_beam -- --nocapture`
+//! Run: `cargo test --profile quick --test closed_form_static_beam -- --nocapture`
 mod common;
 
 use common::{order, Table};

@@ -2,7 +2,7 @@
 //! at which the straight state loses stability (first negative pivot of the tangent) against the
 //! closed-form critical load of the model (Euler's load with the shear and stretch corrections).
 //!
-//! Run: `cargo test --release --test physics_buckling -- --nocapture`
+//! Run: `cargo test --profile quick --test physics_buckling -- --nocapture`
 mod common;
 
 use common::{

@@ -2,7 +2,7 @@
 //! direction (shooting solution), and an end moment that rolls the rod into a full circle. Also
 //! shows that the hybrid element does not lock in shear (same error at L/h = 10^2 and 10^3).
 //!
-//! Run: `cargo test --release --test physics_elastica -- --nocapture`
+//! Run: `cargo test --profile quick --test physics_elastica -- --nocapture`
 mod common;
 
 use common::{cantilever_tip, elastica_tip, order, Table, NU};

@@ -1,7 +1,7 @@
 //! Linear natural frequencies of the simply supported straight rod against the Timoshenko beam
 //! (shear coefficient 1, rotary inertia included) and the axial bar.
 //!
-//! Run: `cargo test --release --test physics_frequencies -- --nocapture`
+//! Run: `cargo test --profile quick --test physics_frequencies -- --nocapture`
 mod common;
 
 use common::{

@@ -1,7 +1,7 @@
 //! Conservation properties of the implicit midpoint rule, driving `Midpoint` directly: linear and
 //! angular momentum of a free, unloaded, undamped rod; monotone energy decay with damping.
 //!
-//! Run: `cargo test --release --test physics_momentum -- --nocapture`
+//! Run: `cargo test --profile quick --test physics_momentum -- --nocapture`
 //!
 //! Why the midpoint rule conserves `J = sum_i x_i × (M v)_i + (M v)_w` (`Rod::angular_momentum`):
 //! with `p = M v` it solves `(x_(n+1) - x_n) / dt = M^-1 p_(n+1/2)`,

@@ -2,7 +2,7 @@
 //! preloaded arches) and the contract of `Simulation::advance` (a failed step changes nothing; a
 //! communication step cut into sub-steps equals the same sub-steps taken one by one).
 //!
-//! Run: `cargo test --release --test physics_scenes -- --nocapture`
+//! Run: `cargo test --profile quick --test physics_scenes -- --nocapture`
 mod common;
 
 use common::{

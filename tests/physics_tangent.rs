@@ -3,7 +3,7 @@
 //! energy, Newton converges quadratically in statics and in a large midpoint step, and the
 //! midpoint rule's chord corrections (factorization reused) reach Newton's solution.
 //!
-//! Run: `cargo test --release --test physics_tangent -- --nocapture`
+//! Run: `cargo test --profile quick --test physics_tangent -- --nocapture`
 mod common;
 
 use common::{dense_tangent, max_abs, Rng, Table};

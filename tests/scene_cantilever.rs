@@ -3,7 +3,7 @@
 //! inextensible elastica (computed here by shooting), the root reactions against the load and
 //! its moment, and the shape samples against the rod's root and length.
 //!
-//! Run: `cargo test --release --test scene_cantilever -- --nocapture`
+//! Run: `cargo test --profile quick --test scene_cantilever -- --nocapture`
 mod common;
 
 use common::{output, Table};

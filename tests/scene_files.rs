@@ -279,7 +279,7 @@ fn the_packager_refuses_bad_files_and_writes_nothing() {
     if !lib.is_file() {
         // `cargo test` builds the bin and the cdylib of the same profile together.
         panic!(
-            "{} is missing: build with `cargo build --release --lib`",
+            "{} is missing: build with `cargo build --profile quick --lib`",
             lib.display()
         );
     }

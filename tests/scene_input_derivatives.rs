@@ -3,7 +3,7 @@
 //! input from the value set, a support from where it is. Checked against motions the midpoint
 //! rule reproduces exactly.
 //!
-//! Run: `cargo test --release --test scene_input_derivatives -- --nocapture`
+//! Run: `cargo test --profile quick --test scene_input_derivatives -- --nocapture`
 mod common;
 
 use common::{output, set_input, Table};

@@ -1,7 +1,7 @@
 //! The `[model]` options of scene files (departures from the specified model, for studies):
 //! lumped mass, a shear correction factor, rotational damping. Each against a closed form.
 //!
-//! Run: `cargo test --release --test scene_model_options -- --nocapture`
+//! Run: `cargo test --profile quick --test scene_model_options -- --nocapture`
 mod common;
 
 use common::{output, timoshenko_bending_omega, Table};

@@ -1,7 +1,7 @@
 //! Supports as data: moving supports (`examples/BeamOnBase.toml`), reactions in a dynamic run
 //! and in a statically indeterminate beam (`examples/ThreeSpan.toml`), and the mesh check.
 //!
-//! Run: `cargo test --release --test scene_supports -- --nocapture`
+//! Run: `cargo test --profile quick --test scene_supports -- --nocapture`
 mod common;
 
 use common::{output, set_input, Table};

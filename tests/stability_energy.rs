@@ -18,7 +18,7 @@
 //! tests write the energy histories there (`stability_energy_<case>_<scheme>.csv`, used by
 //! `python -m georod_tools.stability plot`).
 //!
-//! Run: `cargo test --release --test stability_energy -- --nocapture`
+//! Run: `cargo test --profile quick --test stability_energy -- --nocapture`
 mod common;
 #[path = "stability_driver.rs"]
 mod driver;

@@ -4,7 +4,7 @@
 //! bounded outputs or fails with `SimError::StepFailed` leaving the state exactly as it was
 //! (the FMU's fmi2Discard); nothing panics, nothing is NaN; a refused value names its variable.
 //!
-//! Run: `cargo test --release --test stability_extremes -- --nocapture`
+//! Run: `cargo test --profile quick --test stability_extremes -- --nocapture`
 mod common;
 
 use common::{output, scene, Table};

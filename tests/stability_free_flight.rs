@@ -9,7 +9,7 @@
 //! angular momentum (midpoint: exact; energy-momentum: second order in dt), energy
 //! (energy-momentum: exact).
 //!
-//! Run: `cargo test --release --test stability_free_flight -- --nocapture`
+//! Run: `cargo test --profile quick --test stability_free_flight -- --nocapture`
 mod common;
 #[path = "stability_driver.rs"]
 mod driver;

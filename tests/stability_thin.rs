@@ -12,7 +12,7 @@
 //! Locking would stiffen the element like `(L/h)^2`: the errors would grow by orders of
 //! magnitude from L/h = 10 to 10^4. Here they do not.
 //!
-//! Run: `cargo test --release --test stability_thin -- --nocapture`
+//! Run: `cargo test --profile quick --test stability_thin -- --nocapture`
 mod common;
 #[path = "stability_driver.rs"]
 mod driver;

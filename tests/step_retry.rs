@@ -9,7 +9,7 @@
 //! - a discarded step leaves the snapshot bit for bit as before, and the run continues exactly
 //!   like one that never tried the step.
 //!
-//! Run: `cargo test --release --test step_retry -- --nocapture`
+//! Run: `cargo test --profile quick --test step_retry -- --nocapture`
 mod common;
 
 use common::{advance, loads, output, simulation as scene};
