@@ -29,6 +29,27 @@ RELEASE_LIB = RELEASE_DIR / "libgeorod.so"
 BUILD_FMUS = REPO / "scripts" / "build_fmus"
 
 
+#: The time limit of a test meant to be quick (a few FMI calls, a parser, a classifier): the
+#: slowest of them takes about 20 s on a loaded 2-core machine. Every other test has the
+#: generous default of python/pyproject.toml.
+QUICK_LIMIT_S = 120
+
+
+def is_quick(module: str) -> bool:
+    """Test modules of FMI calls (not valgrind's), of parsers and of the classifier."""
+    if module.startswith("test_fmu_"):
+        return module != "test_fmu_valgrind"
+    return module in {"test_analysis_classify", "test_cli_args", "test_scene_files_regression"}
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The quick modules' tests get QUICK_LIMIT_S unless they carry a limit of their own."""
+    for item in items:
+        module = item.module.__name__ if isinstance(item, pytest.Function) else ""
+        if is_quick(module) and item.get_closest_marker("timeout") is None:
+            item.add_marker(pytest.mark.timeout(QUICK_LIMIT_S))
+
+
 @pytest.hookimpl(hookwrapper=True)
 def pytest_runtest_makereport(item: pytest.Item, call: pytest.CallInfo[None]):  # noqa: ANN201
     """Turns every skip into a failure: in this suite a skipped test is a check that did not

@@ -43,8 +43,15 @@ def ensure_georod() -> Path:
     return GEOROD_CLI
 
 
+#: The scenes packaged in this test session: each is packaged once, whoever asks again gets it.
+_PACKAGED: dict[str, FmuInfo] = {}
+
+
 def package_scene(name: str, out_dir: Path) -> FmuInfo:
-    """python/tests/scenes/<name>.toml packaged by `georod fmu` into out_dir and extracted."""
+    """python/tests/scenes/<name>.toml packaged by `georod fmu` into out_dir and extracted, once
+    per session (a second call returns the first call's FMU, in the first call's out_dir)."""
+    if name in _PACKAGED:
+        return _PACKAGED[name]
     scene = SCENE_DIR / f"{name}.toml"
     if not scene.is_file():
         pytest.fail(f"scene file {scene} is missing")
@@ -58,4 +65,5 @@ def package_scene(name: str, out_dir: Path) -> FmuInfo:
         )
     unzipdir = Path(fmpy.extract(str(fmu), unzipdir=str(out_dir / name)))
     md = fmpy.read_model_description(str(unzipdir))
-    return FmuInfo.from_model_description(name, fmu, unzipdir, md)
+    _PACKAGED[name] = FmuInfo.from_model_description(name, fmu, unzipdir, md)
+    return _PACKAGED[name]

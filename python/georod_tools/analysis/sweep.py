@@ -42,6 +42,7 @@ from georod_tools.analysis.failure import (
     FAIL_WORKER,
     CaseFailure,
 )
+from georod_tools.analysis.worker_start import start_worker_server
 from georod_tools.fmu import FmuError
 from georod_tools.fmu.worker import (
     FmuPayload,
@@ -149,24 +150,17 @@ class SweepOutcome:
 
 
 def local_cluster(workers: int) -> Any:
-    """`workers` single-threaded processes, each holding only the chunk it runs (worker
-    saturation 1; Dask's default 1.1 gives a single-threaded worker a second task to hold). A
-    worker that dies then takes only its running chunk with it: a task held behind it would
-    also count the death as one of its allowed failures, so that a case that kills its worker
-    again and again could make an innocent case fail. The round trip to the scheduler for the
-    next chunk (3 ms) is what the chunks make rare.
-
-    On Linux the worker processes are forked from this one, which has imported everything
-    they need: a worker is up in 0.07 s instead of the 0.4 s of a fresh interpreter importing
-    Dask again (elsewhere, where forking is unsafe or unavailable, they are spawned). Forking
-    a process with threads is safe only while no other thread holds a lock the child needs:
-    this process starts no thread of its own before the cluster is up (see `on_started` of
-    :func:`sweep`), and a worker restarted later inherits at most an import under way, of a
-    module it never imports."""
+    """`workers` single-threaded processes (started by :func:`worker_start_method`), each
+    holding only the chunk it runs (worker saturation 1; Dask's default 1.1 gives a
+    single-threaded worker a second task to hold). A worker that dies then takes only its
+    running chunk with it: a task held behind it would also count the death as one of its
+    allowed failures, so that a case that kills its worker again and again could make an
+    innocent case fail. The round trip to the scheduler for the next chunk (3 ms) is what the
+    chunks make rare."""
     import dask
     from dask.distributed import LocalCluster
 
-    method = "fork" if sys.platform.startswith("linux") else "spawn"
+    method = start_worker_server()
     config = {
         "distributed.scheduler.worker-saturation": 1.0,
         "distributed.worker.multiprocessing-method": method,

@@ -25,9 +25,13 @@ import threading
 from collections.abc import Sequence
 from typing import NoReturn
 
+from georod_tools.analysis.worker_start import start_worker_server
+
 PROG = "georod-tools"
 #: The subcommands, in the order `--help` lists them (modules of this package).
 COMMANDS = ("case", "sweep", "study", "benchmark", "animate", "demo")
+#: The subcommands that may start local Dask workers.
+CLUSTER_COMMANDS = ("sweep", "study", "benchmark")
 
 
 def build_parser(argv: Sequence[str] = ()) -> argparse.ArgumentParser:
@@ -55,6 +59,10 @@ def build_parser(argv: Sequence[str] = ()) -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
+    command = next((a for a in argv if not a.startswith("-")), None)
+    if command in CLUSTER_COMMANDS and "--scheduler" not in argv:
+        # The workers' fork server makes its imports while this process makes its own.
+        start_worker_server()
     parser = build_parser(argv)
     args = parser.parse_args(argv)
     try:

@@ -241,7 +241,7 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
 def load_figures() -> None:
     """Loads the figure's modules (matplotlib: half a second) in a thread while the cases run,
     when this process only waits; importing is thread-safe, the plot waits for it if need be.
-    Started once the workers are up: they may be forked from this process."""
+    Started once the workers are up, so as not to slow their start."""
     Thread(target=import_module, args=("georod_tools.report.figures",), daemon=True).start()
 
 
