@@ -129,6 +129,53 @@ fn unknown_and_mistyped_value_references() {
     }
 }
 
+/// `fmi2SetReal` with the single value reference of one input that is not the first (the 2nd
+/// and the 5th of the BeamOnBase's six support inputs) sets that input and only it: the others
+/// keep their values, and the support it moves is where the value says after the step (a
+/// moving support reaches its input at the end of the step) while the others stay.
+#[test]
+fn one_input_set_by_its_value_reference_moves_only_its_support() {
+    let path = format!("{}/examples/BeamOnBase.toml", env!("CARGO_MANIFEST_DIR"));
+    let scene = georod::scene::Scene::load(path).unwrap();
+    let vars = georod::scene::variables::variables(&scene);
+    let vr_of = |n: &str| vars.iter().find(|v| v.name == n).unwrap().vr;
+    let names = [
+        "left_u1", "left_u2", "left_w", "right_u1", "right_u2", "right_w",
+    ];
+    let inputs: Vec<u32> = names.iter().map(|n| vr_of(n)).collect();
+    assert_eq!(inputs, (1000..1006).collect::<Vec<u32>>());
+    // The ends of the beam (21 shape points, L = 10).
+    let ends = [10_000, 10_020, 20_000, 20_020];
+    let fmu = Fmu::new("BeamOnBase");
+    fmu.init();
+    assert_eq!(fmu.reals(&inputs), [0.0; 6]);
+    let mut expected = [0.0; 6];
+    // (input, value): right_u2 first, then left_u2 alone, which leaves right_u2 where it was.
+    for (i, value) in [(4, 1e-3), (1, -2e-3)] {
+        let status = unsafe { fmi2SetReal(fmu.c, &inputs[i], 1, &value) };
+        assert_eq!(status, fmi2Status::OK, "{:?}", fmu.messages());
+        expected[i] = value;
+        assert_eq!(fmu.reals(&inputs), expected, "after setting {}", names[i]);
+        assert_eq!(
+            fmu.step(fmu.time(), H),
+            fmi2Status::OK,
+            "{:?}",
+            fmu.messages()
+        );
+        assert_eq!(fmu.reals(&inputs), expected, "after the step");
+        // x of both ends, then y: the held u1 stay 0, the u2 are the inputs (to round-off of
+        // the interpolation at the ends).
+        let want = [0.0, 10.0, expected[1], expected[4]];
+        for (got, want) in fmu.reals(&ends).iter().zip(want) {
+            assert!(
+                (got - want).abs() < 1e-15,
+                "after setting {}: {got} instead of {want}",
+                names[i]
+            );
+        }
+    }
+}
+
 #[test]
 fn bad_values_name_the_variable_and_the_range() {
     let fmu = Fmu::new(BEAM);

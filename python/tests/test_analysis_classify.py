@@ -150,3 +150,29 @@ def test_no_exponent_decides_only_periods() -> None:
     c = classify(ring(theta), None)
     assert c.kind == UNRESOLVED and "no Lyapunov exponent" in c.note
     assert classify(np.tile([[0.0, 1.0], [1.0, 0.0]], (10, 1)), None).label == "period-2"
+
+
+@pytest.mark.parametrize("where", [0, 40, 89])
+def test_one_sample_off_breaks_the_period(where: int) -> None:
+    """A period-3 orbit whose samples repeat to 1e-6 except one (first, middle or last), which
+    is off by 5 tolerances in one coordinate: every sample must repeat, so it is not period-3
+    (nor period-6, 9, ...: the sample has no partner anywhere), while the same sample off by
+    half a tolerance still is. Guards the test against a mean, median or sub-range of the
+    differences, which one sample does not move past the tolerance."""
+    rng = np.random.default_rng(4)
+    base = np.array([[0.1, 100.0], [0.5, -300.0], [-0.4, 250.0]])
+    size = np.ptp(base, axis=0)
+    x = np.tile(base, (30, 1)) + 1e-6 * size * rng.standard_normal((90, 2))
+    st = ClassifySettings()
+    for factor, periodic in [(5.0, False), (0.5, True)]:
+        y = x.copy()
+        y[where, 1] += factor * st.period_tol * size[1]
+        mismatch = period_mismatch(y, st.k_max)
+        # one sample off by a in a set of size ~size: the difference to its partners is ~a
+        assert mismatch[2] == pytest.approx(factor * st.period_tol, rel=0.05)
+        c = classify(y, exponent=-0.01)
+        if periodic:
+            assert c.label == "period-3", c.note
+        else:
+            assert c.kind != PERIODIC, c.note
+            assert detect_period(y) is None

@@ -233,3 +233,47 @@ def test_support_follows_input_derivatives(examples: dict[str, FmuInfo]) -> None
         assert "not an input" in log.messages()[-1]
     finally:
         release(slave)
+
+
+def test_shape_outputs_are_the_core_positions(
+    examples: dict[str, FmuInfo], georod_cli: Path, tmp_path: Path
+) -> None:
+    """``shape_x[i]``, ``shape_y[i]`` of the Cantilever FMU (41 points, 20 elements: every other
+    point in the middle of an element) are the rod's positions: its reference (s, 0) plus the
+    displacements the core reports at the same stations. The core is `georod simulate` on the
+    same scene with u1 and u2 sensors added at the shape stations (sensors change nothing of
+    the motion, so the states are the same bits); the bent static state and 20 steps under a
+    tip force. 1e-12 absolute: round-off of coordinates of order 10."""
+    info = examples["Cantilever"]
+    points, length, h, n, f_tip = 41, 10.0, 1e-3, 20, 0.005
+    stations = [i / (points - 1) for i in range(points)]
+    probes = "".join(
+        f'\n[[sensor]]\nname = "p{i}_{q}"\nat = {at!r}\nquantity = "{q}"\n'
+        for i, at in enumerate(stations)
+        for q in ("u1", "u2")
+    )
+    scene = tmp_path / "Cantilever.toml"
+    scene.write_text((REPO / "examples" / "Cantilever.toml").read_text() + probes)
+    out = tmp_path / "core.csv"
+    cmd = [georod_cli, "simulate", "--scene", scene, "--input", f"f_tip={f_tip}"]
+    cmd += ["--step", str(h), "--stop", str(n * h), "--output", out]
+    subprocess.run([str(c) for c in cmd], check=True, timeout=120)
+    core = np.genfromtxt(out, delimiter=",", names=True)
+    xs = [info.vr[f"shape_x[{i + 1}]"] for i in range(points)]
+    ys = [info.vr[f"shape_y[{i + 1}]"] for i in range(points)]
+    slave = instantiate(info)
+    try:
+        slave.setReal([info.vr["f_tip"]], [f_tip])
+        for k in range(n + 1):
+            x, y = np.array(slave.getReal(xs)), np.array(slave.getReal(ys))
+            u1 = np.array([core[f"p{i}_u1"][k] for i in range(points)])
+            u2 = np.array([core[f"p{i}_u2"][k] for i in range(points)])
+            assert np.max(np.abs(x - (length * np.array(stations) + u1))) < 1e-12, k
+            assert np.max(np.abs(y - u2)) < 1e-12, k
+            if k < n:
+                slave.doStep(k * h, h)
+    finally:
+        release(slave)
+    tip = core["p40_u2"]
+    assert tip[0] < -2.0, "the cantilever is bent"
+    assert tip[n] < tip[0] - 0.05, "the tip force moved it"

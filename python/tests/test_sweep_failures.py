@@ -162,3 +162,44 @@ def test_case_command_refuses_non_empty_folder(
     rc, _, stderr = _run_cli(argv, capsys)
     assert rc == 2 and "holds no run.json" in stderr
     assert (tmp_path / "notes.txt").is_file()
+
+
+def test_resume_reruns_exactly_the_lost_cases_and_keeps_the_refusals(
+    beam_fmu: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``--resume`` computes again the values whose worker was lost and those never finished,
+    and no other: a finished result and the FMU's refusals (deterministic) stay as recorded."""
+    from georod_tools.report.case_files import failure_record
+
+    out = tmp_path / "run"
+    argv = ["sweep", "--param", "F", "--start", "0.4", "--stop", "1000", "--count", "4"]
+    argv += [*tiny_cli_options(beam_fmu), "--workers", "1", "--out", str(out)]
+    rc, _, stderr = _run_cli(argv, capsys)
+    assert rc == 0, stderr
+    log = out / "results.jsonl"
+    first = {r["value"]: r for r in map(json.loads, log.read_text().splitlines())}
+    values = [0.4, 333.6, 666.8, 1000.0]
+    assert sorted(first) == values
+    assert first[0.4]["status"] == "ok"
+    assert all(first[v]["kind"] == FAIL_FMU for v in values[1:])  # F far beyond the beam's
+    # As if the run had stopped early: 666.8 was lost with its worker, 1000 never finished.
+    lost = CaseFailure(666.8, FAIL_WORKER, "KilledWorker: lost with its worker", "tcp://x:1")
+    kept = [first[0.4], first[333.6], failure_record(lost)]
+    log.write_text("".join(json.dumps(r) + "\n" for r in kept))
+
+    rc, stdout, stderr = _run_cli([*argv, "--resume"], capsys)
+    assert rc == 0, stderr
+    assert "resuming: 2 of 4 cases already done, 2 to run" in stdout
+    assert "4 cases (2 computed now" in stdout
+    lines = [json.loads(x) for x in log.read_text().splitlines()]
+    assert lines[:3] == kept  # nothing finished is rewritten
+    assert sorted(r["value"] for r in lines[3:]) == [666.8, 1000.0]  # exactly these again
+    assert all(r["kind"] == FAIL_FMU for r in lines[3:])
+    rec = json.loads((out / "run.json").read_text())
+    assert rec["cases"] == {
+        "total": 4,
+        "ok": 1,
+        "failed": 3,
+        "failed_values": [333.6, 666.8, 1000.0],
+    }
+    assert rec["sessions"][-1]["computed"] == 2
