@@ -97,7 +97,7 @@ impl Rod {
     }
 
     /// The same rod with lumped (diagonal, row-sum) mass and damping matrices instead of the
-    /// consistent ones: an option for studies, not the model of the specification.
+    /// consistent ones: an option for studies, not the model of `docs/model.md`.
     pub fn with_lumped_mass(mut self) -> Rod {
         self.lumped = true;
         self.update_bands();
