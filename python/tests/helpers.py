@@ -1,8 +1,8 @@
 """Shared helpers for the FMU tests: paths, instances driven through fmpy.fmi2.FMU2Slave, log
 capture.
 
-Variables are addressed by NAME (shared/spec/fmu.md); value references are looked up in each
-FMU's own modelDescription.xml, never hard-coded.
+Variables are addressed by NAME (docs/scenes.md, "What every FMU has"); value references are
+looked up in each FMU's own modelDescription.xml, never hard-coded.
 """
 
 from __future__ import annotations

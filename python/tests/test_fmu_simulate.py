@@ -56,7 +56,8 @@ def test_validate_fmu_finds_no_problem(fmu: FmuInfo) -> None:
 
 
 def test_model_description_interface(fmu: FmuInfo) -> None:
-    """The names of shared/spec/fmu.md; scene-specific parameters only where they belong."""
+    """The standard names (docs/scenes.md, "What every FMU has") and the shipped scenes' own
+    (scenes/*.toml); scene-specific parameters only where they belong."""
     md = fmu.md
     assert md.fmiVersion == "2.0"
     assert md.coSimulation is not None and md.coSimulation.modelIdentifier == fmu.scene

@@ -17,9 +17,11 @@
 //! ([`super::state_check`]). The CRC-32 detects every corruption of up to 32 consecutive bits
 //! (so every changed byte) and all but 2^-32 of random ones; it is a guard against accidents, the
 //! field checks against crafted states.
-use super::instance::{Experiment, FmiState};
+use super::experiment::Experiment;
 use super::state_check;
-use crate::scene::{ParamValues, Scene};
+pub use super::state_data::StateData;
+use super::state_machine::FmiState;
+use crate::scene::Scene;
 use crate::simulation::Snapshot;
 use bincode::Options;
 use serde::{Deserialize, Serialize};
@@ -32,20 +34,6 @@ pub const SERIAL_VERSION: u32 = 5;
 const CRC_AT: usize = 12;
 const LENGTH_AT: usize = 16;
 pub const PREFIX_LEN: usize = 24;
-
-/// What an FMU state holds.
-#[derive(Clone, Debug, PartialEq)]
-pub struct StateData {
-    /// The scene's name.
-    pub scene: String,
-    pub fmi_state: FmiState,
-    pub experiment: Experiment,
-    pub params: ParamValues,
-    /// The inputs the host set (`None`: the start value).
-    pub inputs: Vec<Option<f64>>,
-    /// The simulation state; `None` before `fmi2ExitInitializationMode` (nothing simulated yet).
-    pub snapshot: Option<Snapshot>,
-}
 
 #[derive(Serialize, Deserialize)]
 struct Header {

@@ -11,7 +11,11 @@
 //! - [`logging`]: log categories ([`logging::LOG_CATEGORIES`], also used for the XML) and the
 //!   per-instance logger;
 //! - [`interface`]: the scene of an FMU and its variables;
-//! - [`instance`]: state machine, stepping, FMU states (testable Rust);
+//! - [`state_machine`]: the FMI states, the states each call is allowed in, how a call is
+//!   refused ([`state_machine::FmiResult`]);
+//! - [`experiment`]: what `fmi2SetupExperiment` said;
+//! - [`state_data`]: what an FMU state holds;
+//! - [`instance`]: one instance: life cycle, values, stepping, FMU states (testable Rust);
 //! - [`values`]: getting and setting variables;
 //! - [`fmu_state`]: FMU state snapshots and their serialized, self-checking form;
 //! - [`state_check`]: field checks of a deserialized state;
@@ -21,11 +25,14 @@
 //!   stepping);
 //! - [`uri`]: `fmuResourceLocation` parsing.
 pub mod api;
+pub mod experiment;
 pub mod fmu_state;
 pub mod instance;
 pub mod interface;
 pub mod logging;
 pub mod state_check;
+pub mod state_data;
+pub mod state_machine;
 pub mod state_registry;
 pub mod types;
 pub mod uri;

@@ -2,7 +2,7 @@
 //! crafted (or written by a buggy tool), so every number is checked to be finite and every size
 //! to fit the instance before the state is handed out. The parameters go through the same
 //! validation as `fmi2SetReal`.
-use super::fmu_state::StateData;
+use super::state_data::StateData;
 use crate::scene::{ParamValues, Scene};
 use crate::simulation::Snapshot;
 

@@ -8,8 +8,8 @@
 //! came and went since), freed twice, belongs to another instance, or was never given out is
 //! refused, and no memory it might point to is ever touched. The registry owns its states, so
 //! they go with the instance (`fmi2FreeInstance` frees the ones the host did not).
-use super::fmu_state::StateData;
-use super::instance::{error, FmiResult};
+use super::state_data::StateData;
+use super::state_machine::{error, FmiResult};
 use super::types::fmi2FMUstate;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -120,7 +120,8 @@ impl StateRegistry {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fmi::instance::{Experiment, FmiState};
+    use crate::fmi::experiment::Experiment;
+    use crate::fmi::state_machine::FmiState;
     use crate::scene::ParamValues;
 
     fn data() -> StateData {

@@ -1,6 +1,7 @@
 //! `fmi2Get*` / `fmi2Set*` on an instance: value references are looked up in the scene's
 //! variable list, each value is checked, and a set applies only if every value is accepted.
-use super::instance::{error, mask, state_list, Failure, FmiResult, FmiState, Instance};
+use super::instance::Instance;
+use super::state_machine::{error, mask, state_list, Failure, FmiResult, FmiState};
 use crate::scene::variables::{Causality, Role, Timing, Variable};
 use crate::scene::VarType;
 

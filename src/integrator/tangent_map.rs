@@ -236,7 +236,7 @@ impl TangentMap {
         debug_assert!(self.tangents_current);
         jac.copy_from(dynamic);
         for (e, ke) in self.tangents.iter().enumerate() {
-            jac.add_element(e, ke, 0.5);
+            jac.add_pair(e, ke, 0.5);
         }
         jac.constrain(rod.constrained());
         jac.factor_symmetric()?;

@@ -1,9 +1,11 @@
 //! The tangent of one element by its ten distinct numbers, [`ElementTangent`]: how it is
-//! multiplied, split into node blocks and expanded. Separate from `element` (the force and
-//! tangent evaluation that fills it) to keep that file short; a child module of `element`
-//! (declared there, re-exported as `element::ElementTangent`) so that the fields stay visible to
-//! `element` alone.
+//! multiplied, split into node blocks (which is how a block-tridiagonal matrix takes it:
+//! [`PairBlocks`]; the solver knows no element) and expanded. Separate from `element` (the force and tangent
+//! evaluation that fills it) to keep that file short; a child module of `element` (declared
+//! there, re-exported as `element::ElementTangent`) so that the fields stay visible to `element`
+//! alone.
 use super::{Matrix6, Vector6};
+use crate::solver::PairBlocks;
 use nalgebra::Matrix3;
 
 /// The symmetric 6x6 tangent of an element by its ten distinct numbers: with `T` the 2x2
@@ -83,5 +85,13 @@ impl ElementTangent {
         k.fixed_view_mut::<3, 3>(3, 0).copy_from(&ab.transpose());
         k.fixed_view_mut::<3, 3>(3, 3).copy_from(&bb);
         k
+    }
+}
+
+/// The element's tangent as the solver adds it: its node blocks, formed inside
+/// `BlockTridiagonal::add_pair` from the ten numbers.
+impl PairBlocks for ElementTangent {
+    fn blocks(&self) -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>) {
+        ElementTangent::blocks(self)
     }
 }

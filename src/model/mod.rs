@@ -1,5 +1,5 @@
-//! The rod model of `shared/spec/model.md`: reference geometry, section, the hybrid element and
-//! the assembled rod with its constraints, loads, mass and damping.
+//! The rod model of `docs/model.md` (sections 1 to 5): reference geometry, section, the hybrid
+//! element and the assembled rod with its constraints, loads, mass and damping.
 pub mod bands;
 pub mod element;
 pub mod geometry;

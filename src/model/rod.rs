@@ -97,7 +97,7 @@ impl Rod {
     }
 
     /// The same rod with lumped (diagonal, row-sum) mass and damping matrices instead of the
-    /// consistent ones: an option for studies, not the model of the specification.
+    /// consistent ones: an option for studies, not the model of `docs/model.md`.
     pub fn with_lumped_mass(mut self) -> Rod {
         self.lumped = true;
         self.update_bands();
@@ -199,21 +199,21 @@ impl Rod {
             let trig = gauss_trig(&mid);
             el.force_and_tangent_into(&self.section, &mid, &trig, &mut Vector6::zeros(), &mut ke);
             add_element_vector(f, e, &fe);
-            jac.add_element(e, &ke, scale);
+            jac.add_pair(e, &ke, scale);
         }
     }
 
     /// `jac += scale * M`.
     pub fn add_mass(&self, jac: &mut BlockTridiagonal, scale: f64) {
         for (e, m) in self.inertia.iter().enumerate() {
-            jac.add_element_pattern(e, &m.coefficients(false), scale, self.lumped);
+            jac.add_pair_pattern(e, &m.coefficients(false), scale, self.lumped);
         }
     }
 
     /// `jac += scale * C` (damping).
     pub fn add_damping(&self, jac: &mut BlockTridiagonal, scale: f64) {
         for (e, m) in self.inertia.iter().enumerate() {
-            jac.add_element_pattern(e, &m.coefficients(true), scale, self.lumped);
+            jac.add_pair_pattern(e, &m.coefficients(true), scale, self.lumped);
         }
     }
 

@@ -19,7 +19,7 @@ impl Rod {
         let (mut fe, mut ke) = (Vector6::zeros(), ElementTangent::default());
         assemble(f, &self.elements, u, |e, el, ue, trig| {
             el.force_and_tangent_into(&self.section, ue, trig, &mut fe, &mut ke);
-            jac.add_element(e, &ke, scale);
+            jac.add_pair(e, &ke, scale);
             fe
         });
     }
@@ -37,7 +37,7 @@ impl Rod {
         let mut fe = Vector6::zeros();
         assemble(f, &self.elements, u, |e, el, ue, trig| {
             el.force_and_tangent_into(&self.section, ue, trig, &mut fe, &mut kept[e]);
-            jac.add_element(e, &kept[e], scale);
+            jac.add_pair(e, &kept[e], scale);
             fe
         });
     }

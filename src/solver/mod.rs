@@ -3,4 +3,4 @@
 pub mod block_tridiagonal;
 pub mod vector;
 
-pub use block_tridiagonal::{BlockTridiagonal, SingularMatrix};
+pub use block_tridiagonal::{BlockTridiagonal, PairBlocks, SingularMatrix};

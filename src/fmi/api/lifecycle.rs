@@ -2,8 +2,9 @@
 //! `fmi2SetDebugLogging`, `fmi2Instantiate`, `fmi2FreeInstance`, `fmi2SetupExperiment`, the
 //! initialization mode, `fmi2Terminate` and `fmi2Reset`.
 use super::{input, string, with_instance};
-use crate::fmi::instance::{mask, Failure, Instance};
+use crate::fmi::instance::Instance;
 use crate::fmi::logging::Logger;
+use crate::fmi::state_machine::{mask, Failure};
 use crate::fmi::types::*;
 use crate::fmi::uri;
 use std::os::raw::c_char;

@@ -29,7 +29,8 @@ pub use states::*;
 pub use stepping::*;
 pub use values::*;
 
-use super::instance::{error, Failure, FmiResult, Instance};
+use super::instance::Instance;
+use super::state_machine::{error, Failure, FmiResult};
 use super::types::*;
 use std::ffi::CStr;
 use std::os::raw::c_char;
@@ -148,7 +149,7 @@ mod tests {
             let status = with_instance(c, "fmi2Test", |_| panic!("boom"));
             assert_eq!(status, fmi2Status::Error);
             let inst = Instance::from_raw(c).unwrap();
-            assert_eq!(inst.state(), super::super::instance::FmiState::Error);
+            assert_eq!(inst.state(), crate::fmi::state_machine::FmiState::Error);
             // The error state allows a reset, after which the instance works again.
             assert_eq!(fmi2Reset(c), fmi2Status::OK);
             assert_eq!(fmi2EnterInitializationMode(c), fmi2Status::OK);

@@ -4,7 +4,7 @@
 //! A state handle is an opaque token, looked up in the instance's registry (`inst.states`) before
 //! it is used: freed, foreign and garbage handles are refused, and never dereferenced.
 use super::{input, out_ref, output, with_instance};
-use crate::fmi::instance::{error, mask};
+use crate::fmi::state_machine::{error, mask};
 use crate::fmi::types::*;
 
 /// Takes a copy of the instance's state. `*FMUstate` NULL: a new state. `*FMUstate` a live state

@@ -1,7 +1,8 @@
 //! Stepping and status: `fmi2DoStep`, `fmi2CancelStep` (there is never an asynchronous step to
 //! cancel) and the `fmi2Get*Status` queries.
 use super::{out_ref, with_instance};
-use crate::fmi::instance::{error, mask, FmiResult, Instance};
+use crate::fmi::instance::Instance;
+use crate::fmi::state_machine::{error, mask, FmiResult};
 use crate::fmi::types::*;
 
 fn status_kind_arg(kind: fmi2StatusKind) -> FmiResult<&'static str> {

@@ -2,7 +2,7 @@
 //! Boolean or String variables), input derivatives, and the derivatives it does not provide
 //! (directional and output derivatives: refused).
 use super::{input, output, with_instance};
-use crate::fmi::instance::{error, mask};
+use crate::fmi::state_machine::{error, mask};
 use crate::fmi::types::*;
 
 #[no_mangle]

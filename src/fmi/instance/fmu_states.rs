@@ -2,8 +2,9 @@
 //! into the kept simulation when its fixed parameters fit, and the serialized form (format and
 //! checks in `fmi/fmu_state.rs`).
 use super::lifecycle::same_fixed;
-use super::{error, mask, Failure, FmiResult, FmiState, Instance};
-use crate::fmi::fmu_state::StateData;
+use super::Instance;
+use crate::fmi::state_data::StateData;
+use crate::fmi::state_machine::{error, mask, Failure, FmiResult, FmiState};
 use crate::simulation::Simulation;
 
 impl Instance {

@@ -1,7 +1,8 @@
 //! Parameters and inputs of an instance as the value functions (`fmi/values.rs`) see them: the
 //! value an input holds, input derivatives for the next step, and the simulation outputs are
 //! read from.
-use super::{error, mask, FmiResult, FmiState, Instance};
+use super::Instance;
+use crate::fmi::state_machine::{error, mask, FmiResult, FmiState};
 use crate::scene::variables::input_start;
 use crate::scene::ParamValues;
 use crate::simulation::Simulation;

@@ -1,28 +1,11 @@
 //! The life cycle of an instance: debug logging, `fmi2SetupExperiment`, initialization mode,
 //! terminate and reset, and the initial state they build (kept for reuse while the fixed
 //! parameters allow).
-use super::{error, mask, Failure, FmiResult, FmiState, Instance};
+use super::Instance;
+use crate::fmi::experiment::Experiment;
+use crate::fmi::state_machine::{error, mask, Failure, FmiResult, FmiState};
 use crate::scene::{ParamValues, Scene, Variability};
 use crate::simulation::Simulation;
-use serde::{Deserialize, Serialize};
-
-/// What `fmi2SetupExperiment` said.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Experiment {
-    pub tolerance: Option<f64>,
-    pub start_time: f64,
-    pub stop_time: Option<f64>,
-}
-
-impl Default for Experiment {
-    fn default() -> Self {
-        Experiment {
-            tolerance: None,
-            start_time: 0.0,
-            stop_time: None,
-        }
-    }
-}
 
 /// Whether two parameter sets give the same initial state (the tunable ones aside).
 pub(crate) fn same_fixed(scene: &Scene, a: &ParamValues, b: &ParamValues) -> bool {

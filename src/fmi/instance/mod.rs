@@ -17,24 +17,25 @@
 //!
 //! This file holds the instance itself (fields, pointer checks, accessors, the state check
 //! every call makes); its methods are grouped by concern:
-//! - `state_machine`: the FMI states, the states each call is allowed in, refusals;
 //! - `lifecycle`: experiment setup, initialization mode, terminate, reset, the initial state;
 //! - `inputs`: what the value functions of [`crate::fmi::values`] read and write (inputs, their
 //!   derivatives, the simulation outputs come from);
 //! - `stepping`: `fmi2DoStep` and the status queries;
 //! - `fmu_states`: taking, restoring and (de)serializing FMU states.
+//!
+//! The FMI states, the states each call is allowed in and how a call is refused are the leaf
+//! [`crate::fmi::state_machine`]; what an FMU state holds is [`crate::fmi::state_data`]. The
+//! instance uses them, the FMU state format and the state registry; none of those uses the
+//! instance.
 mod fmu_states;
 mod inputs;
 mod lifecycle;
-mod state_machine;
 mod stepping;
 
-pub use lifecycle::Experiment;
-pub(crate) use state_machine::{error, state_list};
-pub use state_machine::{mask, Failure, FmiResult, FmiState};
-
+use super::experiment::Experiment;
 use super::interface::Interface;
 use super::logging::Logger;
+use super::state_machine::{error, state_list, FmiResult, FmiState};
 use super::state_registry::StateRegistry;
 use crate::scene::{ParamValues, Scene};
 use crate::simulation::Simulation;

@@ -1,7 +1,8 @@
 //! Stepping: `fmi2DoStep` (communication points checked against the instance's clock and the
 //! experiment's stopTime; a step that does not converge is discarded and changes nothing),
 //! `fmi2CancelStep` and the status queries.
-use super::{error, mask, Failure, FmiResult, FmiState, Instance};
+use super::Instance;
+use crate::fmi::state_machine::{error, mask, Failure, FmiResult, FmiState};
 use crate::simulation::SimError;
 
 /// Communication points agree if within this relative ...

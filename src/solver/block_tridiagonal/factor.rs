@@ -25,8 +25,8 @@ impl BlockTridiagonal {
         self.factor_blocks::<false, false>()
     }
 
-    /// [`factor`](Self::factor) for a symmetric matrix (every Jacobian of a step is one: mass,
-    /// damping and element tangents are symmetric, and so is the removal of held dofs). Its
+    /// [`factor`](Self::factor) for a symmetric matrix (every Jacobian of a step is one: its
+    /// mass, damping and stiffness blocks are symmetric, and so is the removal of held dofs). Its
     /// Schur complements are symmetric too, and the multipliers of the two triangles are each
     /// other's transposes: a third fewer operations per node.
     pub fn factor_symmetric(&mut self) -> Result<(), SingularMatrix> {

@@ -9,10 +9,24 @@ mod solve;
 #[cfg(test)]
 mod tests;
 
-use crate::model::element::ElementTangent;
 use nalgebra::{Matrix3, Vector3};
 use solve::block;
 use std::fmt;
+
+/// A symmetric coupling `[[aa, ab], [ab^T, bb]]` of two neighbouring block rows, as
+/// [`BlockTridiagonal::add_pair`] takes it: by its three 3x3 blocks, formed inside `add_pair`, so
+/// a type that holds fewer numbers (a rod element's tangent holds ten) is read once and no
+/// blocks are stored in between. Plain blocks are `[aa, ab, bb]`.
+pub trait PairBlocks {
+    /// `(aa, ab, bb)`; the block `(i + 1, i)` is `ab^T`.
+    fn blocks(&self) -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>);
+}
+
+impl PairBlocks for [Matrix3<f64>; 3] {
+    fn blocks(&self) -> (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>) {
+        (self[0], self[1], self[2])
+    }
+}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct SingularMatrix {
@@ -74,37 +88,33 @@ impl BlockTridiagonal {
         self.factored = false;
     }
 
-    /// Adds `scale * k` for the element between nodes `e` and `e + 1`.
-    pub fn add_element(&mut self, e: usize, k: &ElementTangent, scale: f64) {
+    /// Adds `scale * [[aa, ab], [ab^T, bb]]` to the block rows and columns `i` and `i + 1`, with
+    /// `(aa, ab, bb)` = `pair.blocks()`: a symmetric coupling of two neighbouring block rows (for
+    /// a rod, one element's tangent).
+    pub fn add_pair<P: PairBlocks + ?Sized>(&mut self, i: usize, pair: &P, scale: f64) {
         debug_assert!(!self.factored);
-        let (aa, ab, bb) = k.blocks();
-        self.diag[e] += scale * aa;
-        self.upper[e] += scale * ab;
-        self.lower[e] += scale * ab.transpose();
-        self.diag[e + 1] += scale * bb;
+        let (aa, ab, bb) = pair.blocks();
+        self.diag[i] += scale * aa;
+        self.upper[i] += scale * ab;
+        self.lower[i] += scale * ab.transpose();
+        self.diag[i + 1] += scale * bb;
     }
 
-    /// Adds `scale * [[2 c, c], [c, 2 c]]` per dof kind (`coeffs = (c_u1, c_u2, c_w)`), the
-    /// pattern of the consistent mass and damping matrices of element `e`, or with `lumped`
-    /// `scale * [[3 c, 0], [0, 3 c]]`.
-    pub fn add_element_pattern(
-        &mut self,
-        e: usize,
-        coeffs: &Vector3<f64>,
-        scale: f64,
-        lumped: bool,
-    ) {
+    /// Adds `scale * [[2 c, c], [c, 2 c]]` per dof of a block (`coeffs = (c_0, c_1, c_2)`) to
+    /// the block rows and columns `i` and `i + 1` (for a rod, the pattern of an element's
+    /// consistent mass and damping matrices), or with `lumped` `scale * [[3 c, 0], [0, 3 c]]`.
+    pub fn add_pair_pattern(&mut self, i: usize, coeffs: &Vector3<f64>, scale: f64, lumped: bool) {
         debug_assert!(!self.factored);
         let d = Matrix3::from_diagonal(&(coeffs * scale));
         if lumped {
-            self.diag[e] += 3.0 * d;
-            self.diag[e + 1] += 3.0 * d;
+            self.diag[i] += 3.0 * d;
+            self.diag[i + 1] += 3.0 * d;
             return;
         }
-        self.diag[e] += 2.0 * d;
-        self.diag[e + 1] += 2.0 * d;
-        self.upper[e] += d;
-        self.lower[e] += d;
+        self.diag[i] += 2.0 * d;
+        self.diag[i + 1] += 2.0 * d;
+        self.upper[i] += d;
+        self.lower[i] += d;
     }
 
     /// Replaces the rows and columns of the constrained `dofs` by those of the identity, which is

@@ -28,6 +28,27 @@ fn row_stencils_are_the_rows_of_the_product() {
     }
 }
 
+/// `add_pair` with plain blocks `[aa, ab, bb]` adds `scale * [[aa, ab], [ab^T, bb]]` at block
+/// rows `i`, `i + 1` and nothing elsewhere; two pairs sharing a block row add up there.
+#[test]
+fn add_pair_adds_the_scaled_blocks_and_the_transpose() {
+    let block = |seed: f64| Matrix3::from_fn(|r, c| (seed + (3 * r + c) as f64).sin());
+    let (aa, ab, bb) = (block(0.0), block(10.0), block(20.0));
+    let mut a = BlockTridiagonal::new(4);
+    a.add_pair(1, &[aa, ab, bb], 2.0);
+    a.add_pair(2, &[aa, ab, bb], -0.5);
+    assert_eq!(a.diag[0], Matrix3::zeros());
+    assert_eq!(a.diag[1], 2.0 * aa);
+    assert_eq!(a.diag[2], 2.0 * bb + -0.5 * aa);
+    assert_eq!(a.diag[3], -0.5 * bb);
+    assert_eq!(
+        (a.upper[0], a.lower[0]),
+        (Matrix3::zeros(), Matrix3::zeros())
+    );
+    assert_eq!((a.upper[1], a.lower[1]), (2.0 * ab, 2.0 * ab.transpose()));
+    assert_eq!((a.upper[2], a.lower[2]), (-0.5 * ab, -0.5 * ab.transpose()));
+}
+
 #[test]
 fn adjugate_inverse_matches_nalgebra() {
     let m = Matrix3::new(4.0, -1.5, 0.3, 2.0, 7.0, -0.25, 1e-3, 0.5, 3e-4);

@@ -1,5 +1,6 @@
 //! The FMI 2.0 Co-Simulation state machine of an instance: its states, the sets of states each
-//! function may be called in (standard section 4.2.4), and how a call is refused.
+//! function may be called in (standard section 4.2.4), and how a call is refused. A leaf: it
+//! names nothing else of `fmi`, so the instance, its FMU states and their registry all use it.
 use serde::{Deserialize, Serialize};
 
 /// The FMI 2.0 Co-Simulation states (standard section 4.2.4). `stepInProgress` is never entered
