@@ -175,11 +175,16 @@ fn a_scene_at_every_maximum_has_unique_value_references_inside_their_blocks() {
             Role::Input(_) => 1000..2000,
             Role::Output(OutputId::Standard(_))
             | Role::Output(OutputId::Lyapunov { .. })
-            | Role::Output(OutputId::LyapunovTime) => 32..100,
+            | Role::Output(OutputId::LyapunovTime)
+            | Role::Output(OutputId::Frequency(_)) => 32..100,
             Role::Output(OutputId::Sensor(_)) => 2000..3000,
             Role::Output(OutputId::Reaction { .. }) => 3000..10_000,
             Role::Output(OutputId::ShapeX(_)) => 10_000..20_000,
             Role::Output(OutputId::ShapeY(_)) => 20_000..30_000,
+            Role::Output(OutputId::ShapeField { field, .. }) => {
+                let base = 30_000 + 10_000 * field as u32;
+                base..base + 10_000
+            }
         };
         assert!(
             range.contains(&v.vr),
