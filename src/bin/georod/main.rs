@@ -1,5 +1,6 @@
 //! `georod`: package a scene file into an FMU, or run a scene through the Rust core directly.
 mod args;
+mod modal;
 mod statics;
 
 use args::{load_scene, Options};
@@ -46,9 +47,12 @@ const COMMANDS: [(&str, &str); 7] = [
     ),
     (
         "modes",
-        "modes --scene SCENE [--set ...] [--load-name LOAD] [--sensor NAME] [--load P] [--count N]
+        "modes FILE.toml [--set ...] [--count N] [--output SHAPES.csv]
+    natural frequencies of any scene's initial state (constant loads on, harmonic and input
+    loads off), printed; the mode shapes written to SHAPES.csv (default <name>_modes.csv)
+  modes --scene SCENE [--set ...] [--load-name LOAD] [--sensor NAME] [--load P] [--count N]
       [--stop MAX_LOAD] [--states FILE.csv] [--output FILE.csv]
-    natural frequencies about every equilibrium of that path at one load",
+    natural frequencies about every equilibrium of one point load's static path at one load",
     ),
     (
         "demo",
@@ -282,7 +286,15 @@ fn check_command_line(command: &str, o: &Options) -> Result<(), String> {
             "{command} takes one scene file: georod {command} FILE.toml"
         ));
     }
-    if let (false, Some(extra)) = (one_file, o.positional.first()) {
+    let modal = command == "modes" && o.scene.is_none();
+    if modal && o.positional.len() != 1 {
+        return Err(
+            "modes takes one scene file (georod modes FILE.toml), or --scene for the \
+             path-following form"
+                .to_string(),
+        );
+    }
+    if let (false, false, Some(extra)) = (one_file, modal, o.positional.first()) {
         return Err(format!(
             "unexpected argument `{extra}` ({command} takes options only)"
         ));
@@ -346,6 +358,20 @@ fn run(args: &[String]) -> Result<(), Failure> {
         "path" => {
             let csv = statics::static_path(&o)?;
             write_or_print(o.output.as_deref(), &csv)?
+        }
+        "modes" if o.scene.is_none() => {
+            let file = &o.positional[0];
+            let (report, csv) = modal::modes_of_scene(file, &o)?;
+            let default = format!(
+                "{}_modes.csv",
+                Path::new(file)
+                    .file_stem()
+                    .map_or("scene".into(), |s| s.to_string_lossy())
+            );
+            let path = o.output.clone().unwrap_or(default);
+            std::fs::write(&path, csv).map_err(|e| format!("{path}: {e}"))?;
+            print!("{report}");
+            println!("wrote the mode shapes to {path}");
         }
         "modes" => {
             let csv = statics::modes(&o)?;
