@@ -1,11 +1,11 @@
 //! `georod`: package a scene file into an FMU, or run a scene through the Rust core directly.
 mod args;
 mod modal;
+mod report;
 mod statics;
 
 use args::{load_scene, Options};
 use georod::packaging;
-use georod::scene::variables::{self, Causality, Role};
 use georod::scene::Scene;
 use georod::simulation::Simulation;
 use std::fmt::Write as _;
@@ -26,13 +26,17 @@ const COMMANDS: [(&str, &str); 7] = [
     (
         "check",
         "check FILE.toml
-    check a scene file (and its initial state) and list the FMU variables it declares",
+    check a scene file (and its initial state) and list the FMU variables it declares (an array
+    such as shape_x[1..21] on one line), then the initial state's support reactions, sensor
+    values, strain energy and natural frequencies",
     ),
     (
         "simulate",
         "simulate --scene SCENE [--set NAME=VALUE]... [--input NAME=VALUE]... --step H --stop T
-         [--output FILE.csv]
-    time, every sensor, E_kin, E_strain, newton_iterations at each step (CSV)",
+         [--outputs NAME,NAME,...] [--output FILE.csv]
+    time and, at each step, the outputs named (any FMU output: sensors, reactions, shape_M[3],
+    frequency[1], energy_error, ...; default: every sensor, every support reaction, E_kin,
+    E_strain, newton_iterations) as CSV",
     ),
     (
         "bench-steps",
@@ -90,36 +94,6 @@ fn simulation(o: &Options) -> Result<Simulation, String> {
         sim.set_input(i, *value).map_err(|e| e.to_string())?;
     }
     Ok(sim)
-}
-
-/// Rows `time,<sensors>,E_kin,E_strain,newton_iterations` from t = 0 at each step.
-fn trajectory(sim: &mut Simulation, step: f64, stop: f64) -> Result<String, String> {
-    let scene = sim.scene().clone();
-    let mut csv = String::from("time");
-    for s in &scene.sensors {
-        let _ = write!(csv, ",{}", s.name);
-    }
-    csv.push_str(",E_kin,E_strain,newton_iterations\n");
-    let steps = (stop / step).round() as usize;
-    let row = |sim: &Simulation, t: f64, csv: &mut String| {
-        let _ = write!(csv, "{t:e}");
-        for i in 0..scene.sensors.len() {
-            let _ = write!(csv, ",{:e}", sim.output(variables::OutputId::Sensor(i)));
-        }
-        let _ = writeln!(
-            csv,
-            ",{:e},{:e},{}",
-            sim.kinetic_energy(),
-            sim.strain_energy(),
-            sim.last_newton_iterations()
-        );
-    };
-    row(sim, 0.0, &mut csv);
-    for _ in 0..steps {
-        sim.advance(step).map_err(|e| e.to_string())?;
-        row(sim, sim.time(), &mut csv);
-    }
-    Ok(csv)
 }
 
 fn write_or_print(output: Option<&str>, text: &str) -> Result<(), String> {
@@ -180,18 +154,11 @@ fn check(o: &Options) -> Result<(), String> {
     let [file] = o.positional.as_slice() else {
         return Err("check takes one scene file: georod check FILE.toml".to_string());
     };
-    let scene = Scene::load(file).map_err(|e| e.to_string())?;
-    packaging::check_initial_state(&scene)?;
+    let scene = Arc::new(Scene::load(file).map_err(|e| e.to_string())?);
+    let sim = Simulation::new(scene.clone(), scene.defaults())
+        .map_err(|e| format!("{}: with its default parameters: {e}", scene.name))?;
     println!("{file}: scene {} is valid", scene.name);
-    for v in variables::variables(&scene) {
-        let kind = match (v.causality, v.role) {
-            (Causality::Parameter, _) => "parameter",
-            (Causality::Input, _) => "input",
-            (_, Role::Output(_)) => "output",
-            _ => "",
-        };
-        println!("  {kind:9} {:24} {}", v.name, v.description);
-    }
+    print!("{}", report::listing(&scene, &sim));
     Ok(())
 }
 
@@ -234,7 +201,8 @@ fn demo(dir: &str) -> Result<(), String> {
     let w0 = sim.output_by_name("w_mid").unwrap_or(f64::NAN);
     let period = 2.0 * std::f64::consts::PI / omega;
     let step = period / 50.0;
-    let csv = trajectory(&mut sim, step, 20.0 * period)?;
+    let columns = report::columns(&scene, &["w_mid".into(), "v_mid".into()])?;
+    let csv = report::trajectory(&mut sim, &columns, step, 20.0 * period)?;
     std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
     let path = format!("{dir}/demo_core_buckled_beam.csv");
     std::fs::write(&path, &csv).map_err(|e| format!("{path}: {e}"))?;
@@ -351,7 +319,8 @@ fn run(args: &[String]) -> Result<(), Failure> {
         "simulate" => {
             let (step, stop) = (o.step.unwrap_or_default(), o.stop.unwrap_or_default());
             let mut sim = simulation(&o)?;
-            let csv = trajectory(&mut sim, step, stop)?;
+            let columns = report::columns(&sim.scene().clone(), &o.outputs)?;
+            let csv = report::trajectory(&mut sim, &columns, step, stop)?;
             write_or_print(o.output.as_deref(), &csv)?
         }
         "bench-steps" => bench_steps(&o)?,
