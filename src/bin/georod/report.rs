@@ -1,7 +1,7 @@
 //! What `georod simulate` writes and `georod check` lists: output columns by name (default: the
 //! sensors, the support reactions and the energies), and a scene's variables with the shape
 //! arrays on one line each, its static reactions and the initial state's key values.
-use georod::scene::variables::{self, Causality, OutputId, Role, Variable};
+use georod::scene::variables::{self, Causality, OutputId, Role, StandardOutput, Variable};
 use georod::scene::Scene;
 use georod::simulation::Simulation;
 use std::fmt::Write as _;
@@ -85,7 +85,12 @@ pub fn trajectory(
     let row = |sim: &Simulation, t: f64, csv: &mut String| {
         let _ = write!(csv, "{t:e}");
         for (_, id) in columns {
-            let _ = write!(csv, ",{:e}", sim.output(*id));
+            let x = sim.output(*id);
+            let _ = match id {
+                // An Integer output, written as one.
+                OutputId::Standard(StandardOutput::NewtonIterations) => write!(csv, ",{x}"),
+                _ => write!(csv, ",{x:e}"),
+            };
         }
         csv.push('\n');
     };
