@@ -38,7 +38,8 @@ from georod_tools.fmu import FmuModel, Instance, lend
 DEFAULT_SUBSTEPS = 128
 #: The dense window's default resolution: the largest power of two dividing N, up to this.
 MAX_DEFAULT_DENSE_STEPS = 64
-#: The sensors sampled: displacement and velocity of the midspan (every scene of the paper).
+#: The sensors sampled by default: displacement and velocity of the midspan (every scene of the
+#: paper); a case names its own (`CaseConfig.sensor`, `CaseConfig.velocity`).
 OUTPUTS = ("w_mid", "v_mid")
 LYAPUNOV_OUTPUTS = ("lyapunov[1]", "lyapunov_time")
 #: FMU parameters a case sets from its own fields (never through `params`).
@@ -76,6 +77,10 @@ class CaseConfig:
         more; for periodic orbits the estimate only needs to stay near zero.
     prelude: what happens before the forcing starts (e.g. pushing an arch into another
         equilibrium); None starts the forcing at t = 0 from the FMU's initial state.
+    sensor, velocity: the displacement sensor sampled and its velocity partner (the FMU's output
+        names; :mod:`georod_tools.analysis.scene_sensors` picks them for any scene).
+    forced: the FMU has a harmonic load (parameters F and Omega, set by the case); without one,
+        `Omega` is only the sampling period's ``2 pi / T`` and F is not set.
     """
 
     fmu: str
@@ -92,6 +97,9 @@ class CaseConfig:
     align_periods: int = 10
     prelude: Prelude | None = None
     classify_settings: ClassifySettings = field(default_factory=ClassifySettings)
+    sensor: str = OUTPUTS[0]
+    velocity: str = OUTPUTS[1]
+    forced: bool = True
 
     def __post_init__(self) -> None:
         checks = [
@@ -152,7 +160,8 @@ class CaseConfig:
         T = self.period
         p: dict[str, float] = dict(self.params)
         p.update({"elements": self.elements, "dt_max": self.dt_max})
-        p.update({"F": 0.0 if self.prelude else self.F, "Omega": self.Omega})
+        if self.forced:
+            p.update({"F": 0.0 if self.prelude else self.F, "Omega": self.Omega})
         if self.lyapunov:
             # Half a sub-step before the period boundary: round-off in the core's clock cannot
             # move the first advanced (or counted) sub-step by one.
@@ -244,7 +253,7 @@ def sample(inst: Instance, cfg: CaseConfig, first: int, dense_from: int) -> Traj
     """The sampled periods from period `first`: one step per period, ``T / m`` steps from
     period `dense_from` on (the dense window)."""
     T, m = cfg.period, cfg.dense_steps_per_period
-    names = OUTPUTS + (LYAPUNOV_OUTPUTS if cfg.lyapunov else ())
+    names = (cfg.sensor, cfg.velocity) + (LYAPUNOV_OUTPUTS if cfg.lyapunov else ())
     read = inst.reader(names)
     rec = Trajectory()
     for k in range(first, first + cfg.sample_periods):
@@ -270,6 +279,16 @@ def sample(inst: Instance, cfg: CaseConfig, first: int, dense_from: int) -> Traj
     return rec
 
 
+def exponent_per_period(inst: Instance, cfg: CaseConfig) -> float:
+    """The core's exponent per sampling period (an unforced FMU has no
+    ``lyapunov_per_period``: its exponent per second times the period)."""
+    if not cfg.lyapunov:
+        return math.nan
+    if cfg.forced:
+        return inst.get(["lyapunov_per_period[1]"])[0]
+    return inst.get(["lyapunov[1]"])[0] * cfg.period
+
+
 def run_case(config: CaseConfig) -> CaseResult:
     """Runs one case (see :class:`CaseConfig`) and classifies its motion."""
     t_start = time.perf_counter()
@@ -281,7 +300,7 @@ def run_case(config: CaseConfig) -> CaseResult:
         first = through_transient(inst, cfg)
         last = first + cfg.sample_periods
         rec = sample(inst, cfg, first, last - max(cfg.dense_periods, 1))
-        per_period = inst.get(["lyapunov_per_period[1]"])[0] if cfg.lyapunov else math.nan
+        per_period = exponent_per_period(inst, cfg)
     strobe = np.asarray(rec.samples, dtype=float)
     dense = np.asarray(rec.dense, dtype=float)
     samples = strobe[:, 1:]
