@@ -1,9 +1,12 @@
 """The deformed rod over time, from an FMU's shape outputs (``shape_x[i]``, ``shape_y[i]``).
 
 :func:`record` runs the FMU from its initial state (communication step `step`, default: the FMU's
-default experiment) and samples the shape at `frames` equally spaced times; :func:`render` writes
-a GIF (matplotlib + Pillow) with the initial shape in grey, the supports marked, and the time
-shown. The command is ``georod-tools animate`` (:mod:`georod_tools.cli.animate`).
+default experiment) and samples the shape at `frames` equally spaced times, with its inputs
+constant or following a :class:`InputTable` (``--inputs FILE``); :func:`render` writes a GIF
+(matplotlib + Pillow) with the initial shape in grey, the supports marked where they are in each
+frame, the time shown, and the factor by which the y axis is stretched when the motion is too flat
+to see in true proportions. The command is ``georod-tools animate``
+(:mod:`georod_tools.cli.animate`).
 """
 
 from __future__ import annotations
@@ -16,6 +19,54 @@ from pathlib import Path
 import numpy as np
 
 SHAPE = re.compile(r"shape_([xy])\[(\d+)\]$")
+#: The y axis is stretched when the motion's height is below this fraction of its width.
+FLAT = 0.15
+
+
+@dataclass
+class InputTable:
+    """Inputs over time from a CSV file: a first column ``time`` (s, increasing) and one column
+    per FMU input, named like it. Before each communication step each input is set to its value
+    linearly interpolated at the step's end (held beyond the table's ends): a moving support
+    reaches it at the end of the step, a load input is held at it over the step."""
+
+    times: np.ndarray
+    values: dict[str, np.ndarray]
+
+    @classmethod
+    def read(cls, path: Path, inputs: list[str]) -> InputTable:
+        """The table in `path`; ValueError naming the file and what is wrong."""
+        import csv
+
+        try:
+            with path.open(newline="") as f:
+                rows = list(csv.reader(f))
+        except OSError as e:
+            raise ValueError(f"--inputs {path}: {e}") from e
+        if len(rows) < 2 or not rows[0] or rows[0][0].strip() != "time":
+            raise ValueError(
+                f"--inputs {path}: needs a header whose first column is time, then one column "
+                f"per input ({', '.join(inputs) or 'this FMU has no inputs'}), and data rows"
+            )
+        names = [n.strip() for n in rows[0][1:]]
+        unknown = [n for n in names if n not in inputs]
+        if unknown or not names:
+            raise ValueError(
+                f"--inputs {path}: {', '.join(unknown) or 'no input column'}: not an input of "
+                f"the FMU (its inputs: {', '.join(inputs) or 'none'})"
+            )
+        try:
+            data = np.array([[float(x) for x in r] for r in rows[1:] if r], dtype=float)
+        except ValueError as e:
+            raise ValueError(f"--inputs {path}: {e}") from e
+        if data.shape[1] != len(names) + 1 or not np.isfinite(data).all():
+            raise ValueError(f"--inputs {path}: every row needs {len(names) + 1} finite numbers")
+        if np.any(np.diff(data[:, 0]) <= 0):
+            raise ValueError(f"--inputs {path}: the times must increase")
+        return cls(data[:, 0], {n: data[:, j + 1] for j, n in enumerate(names)})
+
+    def at(self, t: float) -> dict[str, float]:
+        return {n: float(np.interp(t, self.times, v)) for n, v in self.values.items()}
 
 
 @dataclass
@@ -32,9 +83,15 @@ class Motion:
 
 
 def record(
-    fmu: Path, start_values: dict[str, float], stop: float | None, step: float | None, frames: int
+    fmu: Path,
+    start_values: dict[str, float],
+    stop: float | None,
+    step: float | None,
+    frames: int,
+    inputs: Path | None = None,
 ) -> Motion:
-    """Simulates `fmu` and samples its shape outputs at `frames` + 1 times from 0 to `stop`."""
+    """Simulates `fmu` and samples its shape outputs at `frames` + 1 times from 0 to `stop`, the
+    inputs following the CSV table `inputs` when given (:class:`InputTable`)."""
     from tqdm import tqdm
 
     from georod_tools.fmu import FmuModel, lend
@@ -57,9 +114,11 @@ def record(
     for name in start_values:
         if name not in model.variables:
             raise ValueError(f"--start-values {name}: not a variable of {model.identifier}")
+    table = InputTable.read(inputs, model.names("input")) if inputs is not None else None
+    initial = {**start_values, **(table.at(0.0) if table else {})}
     times, xs, ys = [], [], []
     with lend(model, "animate") as inst:
-        inst.initialize(start_values)
+        inst.initialize(initial)
         read = inst.reader(names)
         for k in tqdm(
             range(steps + 1), desc=f"simulating {model.identifier}", unit="step", leave=False
@@ -70,6 +129,8 @@ def record(
                 xs.append(got[: len(order)])
                 ys.append(got[len(order) :])
             if k < steps:
+                for name, value in (table.at((k + 1) * step) if table else {}).items():
+                    inst.set(name, value)
                 inst.step(k * step, step)
     scene = tomllib.loads((model.unzipdir / "resources" / "scene.toml").read_text("utf-8"))
     supports = [(s["name"], float(s["at"])) for s in scene.get("support", [])]
@@ -94,27 +155,31 @@ def render(motion: Motion, out: Path, fps: int) -> Path:
     ax.set_xlim(x.min() - 0.05 * width, x.max() + 0.05 * width)
     ax.set_ylim(y.min() - 0.1 * height, y.max() + 0.1 * height)
     # True proportions unless the motion would be a flat line in them (a beam deflecting by a
-    # few percent of its length): then the y axis is stretched, and says so.
-    stretched = height < 0.15 * width
-    if not stretched:
+    # few percent of its length): then the y axis is stretched, by a factor the label gives.
+    stretch = stretch_factor(fig, ax) if height < FLAT * width else 1.0
+    if stretch == 1.0:
         ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel(f"x [{motion.unit}]")
-    ax.set_ylabel(f"y [{motion.unit}]" + (", stretched" if stretched else ""))
+    ax.set_ylabel(f"y [{motion.unit}]" + (f", stretched x{stretch:.3g}" if stretch != 1.0 else ""))
     ax.grid(alpha=0.3)
     ax.plot(x[0], y[0], color="0.75", lw=1.5, label="initial state")
-    points = x.shape[1]
-    for name, at in motion.supports:
-        i = round(at * (points - 1))
-        ax.plot([x[0, i]], [y[0, i]], "k^", ms=8)
-        ax.annotate(name, (x[0, i], y[0, i]), textcoords="offset points", xytext=(4, -14))
+    at = support_positions(motion)
+    (marks,) = ax.plot(at[0, :, 0], at[0, :, 1], "k^", ms=8)
+    names = [
+        ax.annotate(name, tuple(at[0, j]), textcoords="offset points", xytext=(4, -14))
+        for j, (name, _) in enumerate(motion.supports)
+    ]
     (line,) = ax.plot(x[0], y[0], color="C0", lw=2.5, label="deformed rod")
     label = ax.set_title("")
     ax.legend(loc="upper right")
 
     def frame(k: int) -> tuple:
         line.set_data(x[k], y[k])
+        marks.set_data(at[k, :, 0], at[k, :, 1])
+        for j, name in enumerate(names):
+            name.xy = tuple(at[k, j])
         label.set_text(f"{motion.name}: t = {motion.times[k]:.5f} s")
-        return line, label
+        return line, marks, label, *names
 
     anim = FuncAnimation(fig, frame, frames=len(motion.times), blit=True)
     bar = tqdm(total=len(motion.times), desc=f"rendering {out.name}", unit="frame", leave=False)
@@ -123,3 +188,24 @@ def render(motion: Motion, out: Path, fps: int) -> Path:
     bar.close()
     plt.close(fig)
     return out
+
+
+def support_positions(motion: Motion) -> np.ndarray:
+    """Where each support is in each frame, ``(frames, supports, 2)``: its station interpolated
+    between the two shape samples around it (equally spaced in arc length)."""
+    points = motion.x.shape[1]
+    s = np.linspace(0.0, 1.0, points)
+    out = np.zeros((len(motion.times), len(motion.supports), 2))
+    for j, (_, at) in enumerate(motion.supports):
+        for k in range(len(motion.times)):
+            out[k, j] = np.interp(at, s, motion.x[k]), np.interp(at, s, motion.y[k])
+    return out
+
+
+def stretch_factor(fig: object, ax: object) -> float:
+    """How much the y axis of `ax` magnifies against the x axis: display length per unit of y
+    over display length per unit of x, from the axes' box and limits."""
+    box = ax.get_position()  # type: ignore[attr-defined]
+    fig_w, fig_h = fig.get_size_inches()  # type: ignore[attr-defined]
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()  # type: ignore[attr-defined]
+    return float((box.height * fig_h / (y1 - y0)) / (box.width * fig_w / (x1 - x0)))
