@@ -5,6 +5,7 @@ pub mod element;
 pub mod geometry;
 pub mod loads;
 pub mod modal;
+pub mod modal_subspace;
 pub mod rod;
 pub mod section;
 pub mod section_forces;

@@ -125,17 +125,14 @@ pub fn natural_frequencies(rod: &Rod, u: &[f64], count: usize) -> Result<Vec<f64
     if count == 0 {
         return Ok(Vec::new());
     }
-    let free = crate::model::modal::free_dofs(rod).len();
-    if free < count {
-        return Err(SimError::InitialState(format!(
-            "[modes] count = {count}: the rod has only {free} free degrees of freedom"
-        )));
-    }
-    let modes = crate::model::modal::modes(rod, u);
-    Ok(modes[..count]
-        .iter()
-        .map(|m| m.omega_squared.signum() * m.omega_squared.abs().sqrt() / std::f64::consts::TAU)
-        .collect())
+    let modes = crate::model::modal_subspace::lowest_modes(rod, u, count)
+        .map_err(|why| SimError::InitialState(format!("[modes] count = {count}: {why}")))?;
+    Ok(modes.iter().map(|(lambda, _)| hertz(*lambda)).collect())
+}
+
+/// `omega / (2 pi)` of `lambda = omega^2`, signed: `-sqrt(-lambda) / (2 pi)` when negative.
+pub fn hertz(lambda: f64) -> f64 {
+    lambda.signum() * lambda.abs().sqrt() / std::f64::consts::TAU
 }
 
 impl Simulation {

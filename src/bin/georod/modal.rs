@@ -2,8 +2,9 @@
 //! equilibrium under the constant loads and prescribed displacements; harmonic and input loads
 //! off), printed, and the mode shapes written as CSV.
 use crate::args::Options;
-use georod::model::modal::modes as natural_modes;
+use georod::model::modal_subspace::lowest_modes;
 use georod::scene::Scene;
+use georod::simulation::readouts::hertz;
 use georod::simulation::Simulation;
 use std::fmt::Write as _;
 use std::sync::Arc;
@@ -18,9 +19,9 @@ pub fn modes_of_scene(file: &str, o: &Options) -> Result<(String, String), Strin
     let sim = Simulation::new(scene.clone(), values).map_err(|e| format!("{file}: {e}"))?;
     let rod = sim.rod();
     let u = &sim.state().u;
-    let free = georod::model::modal::free_dofs(rod).len();
+    let free = rod.dofs() - rod.constrained().len();
     let count = o.count.min(free);
-    let modes = natural_modes(rod, u);
+    let modes = lowest_modes(rod, u, count).map_err(|e| format!("{file}: {e}"))?;
     let mut report = format!(
         "{}: {} elements, natural frequencies of the initial state (undamped; constant loads on, \
          harmonic and input loads off)\n{:>5} {:>16} {:>16}\n",
@@ -35,10 +36,10 @@ pub fn modes_of_scene(file: &str, o: &Options) -> Result<(String, String), Strin
         let _ = write!(csv, ",u1_{k},u2_{k},w_{k}");
     }
     csv.push('\n');
-    let shapes: Vec<Vec<f64>> = modes[..count].iter().map(|m| scaled(&m.shape)).collect();
-    for (k, m) in modes[..count].iter().enumerate() {
-        let omega = m.omega_squared.signum() * m.omega_squared.abs().sqrt();
-        let note = if m.omega_squared < 0.0 {
+    let shapes: Vec<Vec<f64>> = modes.iter().map(|(_, shape)| scaled(shape)).collect();
+    for (k, (lambda, _)) in modes.iter().enumerate() {
+        let f = hertz(*lambda);
+        let note = if *lambda < 0.0 {
             "  (unstable: -sqrt(-omega^2))"
         } else {
             ""
@@ -47,8 +48,8 @@ pub fn modes_of_scene(file: &str, o: &Options) -> Result<(String, String), Strin
             report,
             "{:>5} {:>16.8e} {:>16.8e}{note}",
             k + 1,
-            omega / std::f64::consts::TAU,
-            omega
+            f,
+            f * std::f64::consts::TAU
         );
     }
     for i in 0..rod.nodes() {
