@@ -1,6 +1,8 @@
 """``georod-tools animate`` beyond constant inputs: supports drawn where they are in each frame
 (a beam whose supports follow an input table, ``--inputs FILE.csv``), the stretch factor of a y
-axis stretched to show a flat motion, and bad tables refused before anything is written.
+axis stretched to show a flat motion, bad tables refused before anything is written, and the rod
+coloured by a shape field (``--field M`` on `ReadoutCantilever.toml`, whose bending moment at
+the root is `-P L` = -40 N m at rest, 1e-3 for the small deflection).
 
 `python/tests/scenes/ShakenBeam.toml`: both ends clamped and moved by inputs. The table lifts
 both supports linearly by 0.1 m over 0.01 s: a moving support reaches the input's value at the
@@ -17,7 +19,13 @@ import numpy as np
 import pytest
 
 from georod_tools.cli import main
-from georod_tools.report.animation import record, stretch_factor, support_positions
+from georod_tools.report.animation import (
+    midpoints,
+    record,
+    segments,
+    stretch_factor,
+    support_positions,
+)
 from helpers import FmuInfo
 from scene_fmus import package_scene
 
@@ -80,3 +88,29 @@ def test_bad_input_tables_are_refused(
         main(["animate", str(shaken.path), "--inputs", str(table), "-o", str(out)])
     assert e.value.code == 2 and message in capsys.readouterr().err
     assert not out.exists()
+
+
+@pytest.fixture(scope="module")
+def cantilever(tmp_path_factory: pytest.TempPathFactory) -> FmuInfo:
+    return package_scene("ReadoutCantilever", Path(tmp_path_factory.mktemp("field")))
+
+
+def test_the_rod_is_coloured_by_a_field(
+    cantilever: FmuInfo, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    motion = record(cantilever.path, {}, 2e-4, 1e-4, 2, field="M")
+    assert motion.field is not None and motion.field.shape == (3, 21)
+    assert motion.field_unit == "N.m"
+    assert motion.field[0, 0] == pytest.approx(-40.0, rel=1e-3)
+    assert abs(motion.field[0, -1]) < 1e-9  # a free end carries no moment
+    assert segments(motion.x[0], motion.y[0]).shape == (20, 2, 2)
+    assert midpoints(np.array([0.0, 2.0, 4.0])).tolist() == [1.0, 3.0]
+    out = tmp_path / "moment.gif"
+    argv = ["animate", str(cantilever.path), "--field", "M", "--stop", "2e-4", "--step", "1e-4"]
+    assert main([*argv, "-o", str(out)]) == 0 and out.is_file()
+    never = tmp_path / "never.gif"
+    with pytest.raises(SystemExit) as e:
+        main(["animate", str(cantilever.path), "--field", "N", "-o", str(never)])
+    assert e.value.code == 2
+    assert 'add "N" to the scene\'s [shape] fields' in capsys.readouterr().err
+    assert not never.exists()

@@ -80,6 +80,22 @@ class Motion:
     y: np.ndarray
     supports: list[tuple[str, float]]
     unit: str = "m"
+    #: A field along the rod (``shape_<name>[i]``, e.g. the bending moment) that colours it.
+    field: np.ndarray | None = None
+    field_name: str = ""
+    field_unit: str = ""
+
+
+def field_outputs(model: object, name: str, points: int) -> list[str]:
+    """The outputs ``shape_<name>[1..points]`` of `model`; ValueError saying how to add them."""
+    names = [f"shape_{name}[{i}]" for i in range(1, points + 1)]
+    missing = [n for n in names if n not in model.variables]  # type: ignore[attr-defined]
+    if missing:
+        raise ValueError(
+            f"--field {name}: {model.identifier} has no {missing[0]} "  # type: ignore[attr-defined]
+            f'(add "{name}" to the scene\'s [shape] fields)'
+        )
+    return names
 
 
 def record(
@@ -89,9 +105,11 @@ def record(
     step: float | None,
     frames: int,
     inputs: Path | None = None,
+    field: str | None = None,
 ) -> Motion:
     """Simulates `fmu` and samples its shape outputs at `frames` + 1 times from 0 to `stop`, the
-    inputs following the CSV table `inputs` when given (:class:`InputTable`)."""
+    inputs following the CSV table `inputs` when given (:class:`InputTable`), and the shape field
+    `field` (``shape_<field>[i]``) with them when given."""
     from tqdm import tqdm
 
     from georod_tools.fmu import FmuModel, lend
@@ -106,6 +124,9 @@ def record(
         raise ValueError(f"{fmu}: no shape_x[i] / shape_y[i] outputs (give the scene a [shape])")
     order = sorted(shape["x"])
     names = [shape["x"][i] for i in order] + [shape["y"][i] for i in order]
+    points = len(order)
+    if field is not None:
+        names += field_outputs(model, field, points)
     experiment = model.md.defaultExperiment
     stop = stop if stop is not None else float(experiment.stopTime)
     step = step if step is not None else float(experiment.stepSize)
@@ -116,7 +137,7 @@ def record(
             raise ValueError(f"--start-values {name}: not a variable of {model.identifier}")
     table = InputTable.read(inputs, model.names("input")) if inputs is not None else None
     initial = {**start_values, **(table.at(0.0) if table else {})}
-    times, xs, ys = [], [], []
+    times, xs, ys, fs = [], [], [], []
     with lend(model, "animate") as inst:
         inst.initialize(initial)
         read = inst.reader(names)
@@ -126,8 +147,9 @@ def record(
             if k in sampled:
                 got = read()
                 times.append(k * step)
-                xs.append(got[: len(order)])
-                ys.append(got[len(order) :])
+                xs.append(got[:points])
+                ys.append(got[points : 2 * points])
+                fs.append(got[2 * points :])
             if k < steps:
                 for name, value in (table.at((k + 1) * step) if table else {}).items():
                     inst.set(name, value)
@@ -135,9 +157,14 @@ def record(
     scene = tomllib.loads((model.unzipdir / "resources" / "scene.toml").read_text("utf-8"))
     supports = [(s["name"], float(s["at"])) for s in scene.get("support", [])]
     unit = model.variables[names[0]].unit or "m"
-    return Motion(
+    motion = Motion(
         model.identifier, model.guid, np.array(times), np.array(xs), np.array(ys), supports, unit
     )
+    if field is not None:
+        motion.field = np.array(fs)
+        motion.field_name = field
+        motion.field_unit = model.variables[f"shape_{field}[1]"].unit or ""
+    return motion
 
 
 def render(motion: Motion, out: Path, fps: int) -> Path:
@@ -170,16 +197,23 @@ def render(motion: Motion, out: Path, fps: int) -> Path:
         for j, (name, _) in enumerate(motion.supports)
     ]
     (line,) = ax.plot(x[0], y[0], color="C0", lw=2.5, label="deformed rod")
+    colours = field_colours(fig, ax, motion)
+    if colours is not None:
+        line.set_visible(False)
     label = ax.set_title("")
     ax.legend(loc="upper right")
 
     def frame(k: int) -> tuple:
         line.set_data(x[k], y[k])
+        if colours is not None:
+            colours.set_segments(segments(x[k], y[k]))
+            colours.set_array(midpoints(motion.field[k]))  # type: ignore[index]
         marks.set_data(at[k, :, 0], at[k, :, 1])
         for j, name in enumerate(names):
             name.xy = tuple(at[k, j])
         label.set_text(f"{motion.name}: t = {motion.times[k]:.5f} s")
-        return line, marks, label, *names
+        drawn = (colours,) if colours is not None else ()
+        return line, marks, label, *names, *drawn
 
     anim = FuncAnimation(fig, frame, frames=len(motion.times), blit=True)
     bar = tqdm(total=len(motion.times), desc=f"rendering {out.name}", unit="frame", leave=False)
@@ -209,3 +243,37 @@ def stretch_factor(fig: object, ax: object) -> float:
     fig_w, fig_h = fig.get_size_inches()  # type: ignore[attr-defined]
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()  # type: ignore[attr-defined]
     return float((box.height * fig_h / (y1 - y0)) / (box.width * fig_w / (x1 - x0)))
+
+
+def segments(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The rod as segments between consecutive shape samples, ``(points - 1, 2, 2)``."""
+    p = np.column_stack([x, y])
+    return np.stack([p[:-1], p[1:]], axis=1)
+
+
+def midpoints(values: np.ndarray) -> np.ndarray:
+    """A segment's colour value: the mean of its two samples."""
+    return 0.5 * (values[:-1] + values[1:])
+
+
+def field_colours(fig: object, ax: object, motion: Motion) -> object:
+    """The rod coloured by `motion.field` (a diverging colour map centred on zero, over every
+    frame's range) with a colour bar naming the field and its unit; None without a field."""
+    if motion.field is None:
+        return None
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import Normalize
+
+    bound = max(float(np.max(np.abs(motion.field))), 1e-300)
+    colours = LineCollection(
+        segments(motion.x[0], motion.y[0]),
+        cmap="coolwarm",
+        norm=Normalize(-bound, bound),
+        linewidths=3.0,
+        label=f"deformed rod, coloured by {motion.field_name}",
+    )
+    colours.set_array(midpoints(motion.field[0]))
+    ax.add_collection(colours)  # type: ignore[attr-defined]
+    unit = f" [{motion.field_unit}]" if motion.field_unit else ""
+    fig.colorbar(colours, ax=ax, label=f"{motion.field_name}{unit}")  # type: ignore[attr-defined]
+    return colours
