@@ -1,7 +1,8 @@
 """The analysis tools on scenes that do not look like the paper's: sensors not named w_mid /
 v_mid, a harmonic load whose amplitude is not F, a scene without a harmonic load, a mesh of the
 scene's own. `case` and `sweep` sample the sensor asked for (default: the scene's first
-displacement sensor) with its velocity partner, take the period from the harmonic load or from
+displacement sensor) with its velocity partner (or, without one, the sensor's change over the
+last sub-step of each step), take the period from the harmonic load or from
 `--period`, sweep any parameter of the scene by name and use the FMU's own mesh; a scene that
 cannot be analysed so is refused (exit status 2) before any case runs, with the reason and what
 to add; a sweep whose every case fails exits 1.
@@ -10,7 +11,13 @@ to add; a sweep whose every case fails exits 1.
 at 200 rad/s, damped at 25 1/s, so that 40 forcing periods settle every mode: after them it moves
 with the forcing, period 1) and `UserSwing.toml` (a cantilever released under a tip load,
 no harmonic load, damped towards its loaded equilibrium: period 1 at any sampling period once
-settled).
+settled; its first sensor `mid` has no velocity partner).
+
+The sampled velocity: the midpoint rule moves a sensor by `dt (v_n + v_(n+1)) / 2` in a sub-step
+(the sensor interpolates the nodes linearly), so the sensor's change over the last sub-step
+divided by `dt` is the mean of the velocities at its two ends: it differs from the velocity at
+the end by at most `dt / 2` times the largest acceleration (taken here from the partner's dense
+trajectory, sampled at every sub-step).
 """
 
 from __future__ import annotations
@@ -78,10 +85,51 @@ def test_case_of_an_unforced_scene_takes_the_period_and_the_named_sensor(
     assert e.value.code == 2 and "--overwrite" in err and "--resume" not in err, err
 
 
+def test_without_a_velocity_sensor_the_velocity_is_sampled(
+    swing: FmuInfo, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import math
+    from dataclasses import replace
+
+    import numpy as np
+
+    from georod_tools.analysis.case import CaseConfig, run_case
+
+    out = tmp_path / "case"
+    argv = ["case", "--fmu", str(swing.path), "--period", "0.05", *QUICK, "--out", str(out)]
+    assert main(argv) == 0
+    assert "sampling mid" in capsys.readouterr().out
+    assert list(samples(out)[0]) == ["k", "t", "mid", "d(mid)/dt"]
+    # The same sensor with and without its partner.
+    partner = CaseConfig(
+        fmu=str(swing.path),
+        F=0.0,
+        Omega=2.0 * math.pi / 0.05,
+        elements=4,
+        substeps=32,
+        transient_periods=0,
+        sample_periods=4,
+        dense_periods=4,
+        dense_steps=32,
+        lyapunov=False,
+        sensor="tip",
+        velocity="tip_rate",
+        forced=False,
+    )
+    exact = run_case(partner)
+    sampled = run_case(replace(partner, velocity=""))
+    dt = partner.dt_max
+    assert exact.dense is not None
+    accel = np.max(np.abs(np.diff(exact.dense[:, 2]))) / dt
+    gap = np.max(np.abs(sampled.samples[:, 1] - exact.samples[:, 1]))
+    assert gap <= 0.5 * dt * accel * 1.05 + 1e-12, (gap, 0.5 * dt * accel)
+    assert gap > 0.0
+    assert np.allclose(sampled.samples[:, 0], exact.samples[:, 0], rtol=1e-9, atol=0.0)
+
+
 @pytest.mark.parametrize(
     "scene, args, message",
     [
-        ("swing", [], 'add a [[sensor]] with quantity = "v2" and at = 0.5'),
         ("swing", ["--sensor", "tip"], "has no harmonic load: pass --period T"),
         ("swing", ["--sensor", "tip", "--period", "0.1", "--Omega", "3"], "--Omega: UserSwing"),
         ("swing", ["--sensor", "nothing", "--period", "0.1"], "not a sensor of UserSwing"),

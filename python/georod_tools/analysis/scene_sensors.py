@@ -1,6 +1,7 @@
 """What an FMU's own scene file (``resources/scene.toml``) says the analysis tools can sample:
 its displacement sensors and their velocity partners (the velocity of the same dof at the same
-station), and whether it is forced by a harmonic load (``Omega``) or needs a sampling period.
+station; without one the velocity is sampled from the sensor), and whether it is forced by a
+harmonic load (``Omega``) or needs a sampling period.
 A scene that cannot be analysed is refused with the reason and what to add, before any case
 runs."""
 
@@ -29,7 +30,8 @@ class Sensor:
 
 @dataclass(frozen=True)
 class Sampled:
-    """The displacement sensor sampled, its velocity partner and whether the FMU is forced."""
+    """The displacement sensor sampled, its velocity partner ("" when it has none) and whether
+    the FMU is forced."""
 
     sensor: str
     velocity: str
@@ -50,14 +52,15 @@ def scene_sensors(model: FmuModel) -> list[Sensor]:
 
 def pick(model: FmuModel, sensor: str | None) -> Sampled:
     """The sensor to sample (`sensor`, or the scene's first displacement sensor) and its velocity
-    partner; NotAnalysableError with the reason and what to add otherwise."""
+    partner ("" without one); NotAnalysableError with the reason and what to add otherwise."""
     sensors = scene_sensors(model)
     moving = [s for s in sensors if s.quantity in PARTNER]
     if sensor is None:
         if not moving:
             raise NotAnalysableError(
                 f"{model.identifier} has no displacement sensor: add a [[sensor]] with quantity "
-                '"u1", "u2" or "w" (and its velocity, "v1", "v2" or "vw", at the same station)'
+                '"u1", "u2" or "w" (and best its velocity, "v1", "v2" or "vw", at the same '
+                "station)"
             )
         chosen = moving[0]
     else:
@@ -77,9 +80,4 @@ def pick(model: FmuModel, sensor: str | None) -> Sampled:
     partner = next(
         (s for s in sensors if s.quantity == want and abs(s.at - chosen.at) < 1e-12), None
     )
-    if partner is None:
-        raise NotAnalysableError(
-            f"{model.identifier}: the phase portrait of {chosen.name} needs its velocity: add a "
-            f'[[sensor]] with quantity = "{want}" and at = {chosen.at}'
-        )
-    return Sampled(chosen.name, partner.name, "Omega" in model.parameters)
+    return Sampled(chosen.name, partner.name if partner else "", "Omega" in model.parameters)

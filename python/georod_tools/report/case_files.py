@@ -26,7 +26,7 @@ def write_case_csv(result: CaseResult, path: str | Path) -> Path:
     period = result.config.period
     with path.open("w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["k", "t", result.config.sensor, result.config.velocity])
+        w.writerow(["k", "t", result.config.sensor, result.config.velocity_name])
         for t, (wm, vm) in zip(result.sample_times, result.samples, strict=True):
             w.writerow([round(t / period), repr(float(t)), repr(float(wm)), repr(float(vm))])
     return path
@@ -39,7 +39,7 @@ def write_dense_csv(result: CaseResult, path: str | Path) -> Path | None:
     path = Path(path)
     with path.open("w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["t", result.config.sensor, result.config.velocity])
+        w.writerow(["t", result.config.sensor, result.config.velocity_name])
         for row in result.dense:
             w.writerow([repr(float(x)) for x in row])
     return path
@@ -92,7 +92,7 @@ def write_sweep_csv(
         w.writerows(row for _, row in rows)
     with samples_path.open("w", newline="") as f:
         w = csv.writer(f)
-        names = [results[0].config.sensor, results[0].config.velocity] if results else []
+        names = [results[0].config.sensor, results[0].config.velocity_name] if results else []
         w.writerow([param, "k", *(names or ["w_mid", "v_mid"])])
         for r in results:
             x = repr(r.config.value(param))

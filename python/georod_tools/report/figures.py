@@ -81,7 +81,7 @@ def plot_case(result: CaseResult, path: str | Path) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fmu = result.config.fmu
-    names = (result.config.sensor, result.config.velocity)
+    names = (result.config.sensor, result.config.velocity_name)
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6), constrained_layout=True)
     ax_p, ax_ph, ax_t = axes
     s = result.samples
