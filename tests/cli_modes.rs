@@ -2,7 +2,7 @@
 //! simply supported beam under a constant distributed load (which the path-following form
 //! refuses): the printed frequencies are the scene's `frequency[k]` outputs, the mode-shape CSV
 //! has a row per node and three columns per mode, each shape scaled to a largest translation of
-//! +1; the first mode of a simply supported beam is a half sine.
+//! +1 (the first mode of a simply supported beam is a half sine), and an SVG beside it draws them.
 mod common;
 
 use georod::scene::Scene;
@@ -88,6 +88,13 @@ fn modes_of_a_scene_file_prints_frequencies_and_writes_shapes() {
     for r in &rows {
         let expected = (std::f64::consts::PI * r[1] / 10.0).sin();
         assert!((r[5] - expected).abs() < 1e-2, "{r:?}");
+    }
+    // The drawing beside it: per mode a panel with the rod at rest and displaced.
+    let svg = std::fs::read_to_string(shapes.with_extension("svg")).unwrap();
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>"));
+    assert_eq!(svg.matches("<polyline").count(), 2 * 3);
+    for k in 1..=3 {
+        assert!(svg.contains(&format!("LoadedBeam: mode {k} at")), "{svg}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }

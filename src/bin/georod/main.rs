@@ -53,7 +53,8 @@ const COMMANDS: [(&str, &str); 7] = [
         "modes",
         "modes FILE.toml [--set ...] [--count N] [--output SHAPES.csv]
     natural frequencies of any scene's initial state (constant loads on, harmonic and input
-    loads off), printed; the mode shapes written to SHAPES.csv (default <name>_modes.csv)
+    loads off), printed; the mode shapes written to SHAPES.csv (default <name>_modes.csv) and
+    drawn in SHAPES.svg
   modes --scene SCENE [--set ...] [--load-name LOAD] [--sensor NAME] [--load P] [--count N]
       [--stop MAX_LOAD] [--states FILE.csv] [--output FILE.csv]
     natural frequencies about every equilibrium of one point load's static path at one load",
@@ -330,17 +331,19 @@ fn run(args: &[String]) -> Result<(), Failure> {
         }
         "modes" if o.scene.is_none() => {
             let file = &o.positional[0];
-            let (report, csv) = modal::modes_of_scene(file, &o)?;
+            let report = modal::modes_of_scene(file, &o)?;
             let default = format!(
                 "{}_modes.csv",
                 Path::new(file)
                     .file_stem()
                     .map_or("scene".into(), |s| s.to_string_lossy())
             );
-            let path = o.output.clone().unwrap_or(default);
-            std::fs::write(&path, csv).map_err(|e| format!("{path}: {e}"))?;
-            print!("{report}");
-            println!("wrote the mode shapes to {path}");
+            let csv = o.output.clone().unwrap_or(default);
+            let svg = Path::new(&csv).with_extension("svg");
+            std::fs::write(&csv, report.csv).map_err(|e| format!("{csv}: {e}"))?;
+            std::fs::write(&svg, report.svg).map_err(|e| format!("{}: {e}", svg.display()))?;
+            print!("{}", report.text);
+            println!("wrote the mode shapes to {csv} and {}", svg.display());
         }
         "modes" => {
             let csv = statics::modes(&o)?;
