@@ -126,7 +126,7 @@ pub fn natural_frequencies(rod: &Rod, u: &[f64], count: usize) -> Result<Vec<f64
         return Ok(Vec::new());
     }
     let modes = crate::model::modal_subspace::lowest_modes(rod, u, count)
-        .map_err(|why| SimError::InitialState(format!("[modes] count = {count}: {why}")))?;
+        .map_err(|why| SimError::BadArgument(format!("[modes] count = {count}: {why}")))?;
     Ok(modes.iter().map(|(lambda, _)| hertz(*lambda)).collect())
 }
 
