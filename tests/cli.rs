@@ -2,6 +2,9 @@
 //! succeeds; a zero, negative or non-finite step, time or count, a missing option or a stray
 //! argument is refused before anything runs, with a message naming the option and what is
 //! allowed and exit status 2 (a usage error: not 1, a failed run, nor 101, a panic).
+//! `simulate` writes the support reactions by default and any output by name (`--outputs`),
+//! refusing an unknown name with the scene's outputs; `check` lists each shape array on one line
+//! and prints the static reactions and the initial sensor values.
 use std::process::{Command, Output};
 
 const COMMANDS: [&str; 7] = [
@@ -133,7 +136,11 @@ fn good_command_lines_run_and_run_failures_are_status_1() {
         1 + 4,
         "header, t = 0 and 3 steps: {csv}"
     );
-    assert!(csv.starts_with("time,w_mid,v_mid,E_kin,E_strain,newton_iterations\n"));
+    // Every sensor, every support's reaction, then the energies and Newton iterations.
+    assert!(csv.starts_with(
+        "time,w_mid,v_mid,left_Rx,left_Ry,left_M,right_Rx,right_Ry,right_M,E_kin,E_strain,\
+         newton_iterations\n"
+    ));
     let out = georod(&[
         "simulate",
         "--scene",
@@ -175,4 +182,75 @@ fn a_closed_pipe_ends_the_command_quietly() {
     let stderr = text(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_ne!(out.status.code(), Some(101), "{stderr}");
+}
+
+fn stdout(out: &Output) -> String {
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// The cantilever's tip load is `P` along -e2 (1 N here): the static root reaction is +1 along
+/// e2 at every row of a run that stays at rest.
+#[test]
+fn simulate_writes_reactions_and_outputs_by_name() {
+    let scene = "examples/Cantilever.toml";
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "simulate", "--scene", scene, "--set", "P=1", "--step", "1e-3",
+        ];
+        args.extend_from_slice(&["--stop", "2e-3"]);
+        args.extend_from_slice(extra);
+        stdout(&georod(&args))
+    };
+    let csv = run(&[]);
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    for column in ["time", "w_tip", "root_Rx", "root_Ry", "root_M", "E_kin"] {
+        assert!(header.contains(&column), "{header:?}");
+    }
+    let ry = header.iter().position(|c| *c == "root_Ry").unwrap();
+    for row in csv.lines().skip(1) {
+        let value: f64 = row.split(',').nth(ry).unwrap().parse().unwrap();
+        assert!((value - 1.0).abs() < 1e-9, "{row}");
+    }
+    let chosen = run(&["--outputs", "shape_y[41],root_M"]);
+    assert_eq!(chosen.lines().next(), Some("time,shape_y[41],root_M"));
+    assert_eq!(chosen.lines().count(), 4);
+    let bad = georod(&[
+        "simulate",
+        "--scene",
+        scene,
+        "--step",
+        "1e-3",
+        "--stop",
+        "1e-3",
+        "--outputs",
+        "M_tip",
+    ]);
+    let message = String::from_utf8_lossy(&bad.stderr);
+    assert_eq!(bad.status.code(), Some(1), "{message}");
+    assert!(
+        message.contains("`M_tip` is not an output of Cantilever")
+            && message.contains("shape_x[..]"),
+        "{message}"
+    );
+}
+
+#[test]
+fn check_groups_shape_arrays_and_prints_the_static_reactions() {
+    let text = stdout(&georod(&["check", "examples/Cantilever.toml"]));
+    let shape_lines: Vec<&str> = text.lines().filter(|l| l.contains("shape_x")).collect();
+    assert_eq!(shape_lines.len(), 1, "{text}");
+    assert!(shape_lines[0].contains("shape_x[1..41]"), "{text}");
+    assert!(text.contains("lyapunov[1..4]"), "{text}");
+    let reaction = text
+        .lines()
+        .find(|l| l.trim_start().starts_with("support root"))
+        .expect("the root's static reaction");
+    // The example's tip load is 0.01 N along -e2.
+    assert!(reaction.contains("Ry = +1.000000e-2"), "{reaction}");
+    assert!(text.contains("sensor  w_tip"), "{text}");
 }

@@ -159,6 +159,45 @@ fn bad_files() -> Vec<(&'static str, String, Vec<&'static str>)> {
             edit("name = \"Good\"", "name = \"my rod\""),
             vec!["name: ", "C identifier"],
         ),
+        (
+            "a sensor quantity that does not exist",
+            edit("quantity = \"u2\"", "quantity = \"moment\""),
+            vec![
+                "[[sensor]] #1 \"w_mid\", key `quantity`",
+                "\"a2\"",
+                "\"sigma_bottom\"",
+            ],
+        ),
+        (
+            "a shape field that does not exist",
+            format!("{GOOD}[shape]\nfields = [\"M\", \"stress\"]\n"),
+            vec!["shape.fields", "`stress` is not allowed", "\"kappa\""],
+        ),
+        (
+            "a shape field twice",
+            format!("{GOOD}[shape]\nfields = [\"M\", \"M\"]\n"),
+            vec!["shape.fields", "\"M\" is listed twice"],
+        ),
+        (
+            "shape fields without shape points",
+            format!("{GOOD}[shape]\npoints = 0\nfields = [\"N\"]\n"),
+            vec!["shape.fields", "set shape.points >= 2"],
+        ),
+        (
+            "no natural frequencies",
+            format!("{GOOD}[modes]\ncount = 0\n"),
+            vec!["modes.count", "0 is out of range: must be in [1, 12]"],
+        ),
+        (
+            "too many natural frequencies",
+            format!("{GOOD}[modes]\ncount = 13\n"),
+            vec!["modes.count", "13 is out of range: must be in [1, 12]"],
+        ),
+        (
+            "modes without a count",
+            format!("{GOOD}[modes]\n"),
+            vec!["modes.count", "missing"],
+        ),
     ]
 }
 

@@ -1,11 +1,13 @@
 //! Value references come in blocks (scene parameters from 100, inputs from 1000, sensors from
-//! 2000, reactions from 3000, shape samples from 10000 and 20000): a scene with more parameters,
+//! 2000, reactions from 3000, shape samples from 10000 and 20000, shape fields from 30000 in
+//! blocks of 10000, frequencies from 52): a scene with more parameters,
 //! inputs, sensors or supports than its block holds is refused with the key and the maximum; a
 //! scene at every maximum at once is accepted and its value references are all different.
+use georod::scene::readouts::MAX_MODES;
 use georod::scene::variables::{
     variables, Causality, OutputId, Role, MAX_INPUTS, MAX_SCENE_PARAMS, MAX_SENSORS, MAX_SUPPORTS,
 };
-use georod::scene::Scene;
+use georod::scene::{Quantity, Scene};
 use std::collections::BTreeSet;
 use std::fmt::Write;
 
@@ -153,7 +155,14 @@ fn a_scene_at_every_maximum_has_unique_value_references_inside_their_blocks() {
         sensors: MAX_SENSORS,
         shape_points: 10_000,
     };
-    let scene = Scene::parse(&scene_text(n), "big.toml").unwrap_or_else(|e| panic!("{e}"));
+    // Every quantity as a shape field (right after `points`, in [shape]) and the most modes.
+    let fields: Vec<String> = Quantity::NAMES.iter().map(|q| format!("\"{q}\"")).collect();
+    let text = format!(
+        "{}fields = [{}]\n[modes]\ncount = {MAX_MODES}\n",
+        scene_text(n),
+        fields.join(", ")
+    );
+    let scene = Scene::parse(&text, "big.toml").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(scene.inputs.len(), MAX_INPUTS);
     let vars = variables(&scene);
     let mut seen = BTreeSet::new();
@@ -175,11 +184,16 @@ fn a_scene_at_every_maximum_has_unique_value_references_inside_their_blocks() {
             Role::Input(_) => 1000..2000,
             Role::Output(OutputId::Standard(_))
             | Role::Output(OutputId::Lyapunov { .. })
-            | Role::Output(OutputId::LyapunovTime) => 32..100,
+            | Role::Output(OutputId::LyapunovTime)
+            | Role::Output(OutputId::Frequency(_)) => 32..100,
             Role::Output(OutputId::Sensor(_)) => 2000..3000,
             Role::Output(OutputId::Reaction { .. }) => 3000..10_000,
             Role::Output(OutputId::ShapeX(_)) => 10_000..20_000,
             Role::Output(OutputId::ShapeY(_)) => 20_000..30_000,
+            Role::Output(OutputId::ShapeField { field, .. }) => {
+                let base = 30_000 + 10_000 * field as u32;
+                base..base + 10_000
+            }
         };
         assert!(
             range.contains(&v.vr),
@@ -199,5 +213,7 @@ fn a_scene_at_every_maximum_has_unique_value_references_inside_their_blocks() {
             + MAX_SENSORS
             + 3 * MAX_SUPPORTS
             + 2 * 10_000
+            + Quantity::NAMES.len() * 10_000
+            + MAX_MODES
     );
 }

@@ -20,6 +20,7 @@ def core_trajectory(
     for name, value in params.items():
         cmd += ["--set", f"{name}={value!r}"]
     cmd += ["--step", repr(step), "--stop", repr(stop), "--output", out]
+    cmd += ["--outputs", ",".join(CSV_COLUMNS[1:])]
     r = run_cmd(cmd, timeout=120)
     assert r.returncode == 0, f"{cmd} failed: {r.stderr}"
     data = np.genfromtxt(out, delimiter=",", names=True)

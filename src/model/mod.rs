@@ -5,11 +5,14 @@ pub mod element;
 pub mod geometry;
 pub mod loads;
 pub mod modal;
+pub mod modal_subspace;
 pub mod rod;
 pub mod section;
+pub mod section_forces;
 
 pub use element::Element;
 pub use geometry::ReferenceCurve;
 pub use loads::{LoadSet, LoadShape, LoadTime};
 pub use rod::{PointOnRod, Rod};
 pub use section::Section;
+pub use section_forces::SectionForces;

@@ -226,6 +226,16 @@ print(result["time"][-1], result[{shown}][-1])"#,
             scene.shape_points, name
         );
     }
+    if !scene.shape_fields.is_empty() {
+        let names: Vec<String> = (scene.shape_fields.iter())
+            .map(|q| format!("<code>shape_{}[i]</code>", q.name()))
+            .collect();
+        let _ = writeln!(
+            h,
+            "<p>{} read the same points (<code>animate --field NAME</code> colours the rod by              one).</p>",
+            names.join(", ")
+        );
+    }
     let _ = writeln!(h, "</body>\n</html>");
     h
 }

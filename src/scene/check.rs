@@ -6,15 +6,10 @@
 use super::checker::{entry, Checker};
 use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::{claims, items, variables};
+use super::{claims, items};
 use super::{
     Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor,
 };
-
-/// Default shape samples when `[shape]` is absent.
-const DEFAULT_SHAPE_POINTS: usize = 21;
-const MAX_SHAPE_POINTS: usize = 10_000;
-const _: () = assert!(MAX_SHAPE_POINTS <= variables::MAX_SHAPE_POINTS);
 
 /// The scene in `text`, checked completely; `file` names it in every message.
 pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
@@ -64,21 +59,10 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         .enumerate()
         .map(|(i, s)| items::sensor(&c, i, s))
         .collect::<Result<Vec<_>, _>>()?;
-    let shape_points = match raw.shape.as_ref().map(|s| s.points) {
-        None => DEFAULT_SHAPE_POINTS,
-        Some(None) => return c.err("shape.points", "missing: the number of shape samples"),
-        Some(Some(n)) if n == 0 || (2..=MAX_SHAPE_POINTS as i64).contains(&n) => n as usize,
-        Some(Some(n)) => {
-            return c.err(
-                "shape.points",
-                format!(
-                "{n} is out of range: must be 0 (no shape outputs) or in [2, {MAX_SHAPE_POINTS}]"
-            ),
-            )
-        }
-    };
+    let (shape_points, shape_fields) = super::readouts::shape(&c, raw.shape.as_ref())?;
     let initial = initial(&c, &raw, &sensors, &params)?;
     let model = model(&c, &raw)?;
+    let modes = super::readouts::modes(&c, raw.modes.as_ref())?;
 
     let mut scene = Scene {
         name,
@@ -91,6 +75,8 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         sensors,
         inputs,
         shape_points,
+        shape_fields,
+        modes,
         initial,
         model,
         source: text.to_string(),
@@ -304,10 +290,13 @@ fn initial(
                     format!("`{name}` is not a [[sensor]] of this scene"),
                 );
             };
-            if sensors[sensor].quantity.dof().1 {
+            if sensors[sensor].quantity.displacement_dof().is_none() {
                 return c.err(
                     "initial.branch_sensor",
-                    format!("`{name}` measures a velocity: pick a displacement sensor (u1, u2, w)"),
+                    format!(
+                        "`{name}` measures {}: pick a displacement sensor (u1, u2, w)",
+                        sensors[sensor].quantity.name()
+                    ),
                 );
             }
             let well_param = params

@@ -25,6 +25,14 @@ pub struct SceneFile {
     pub shape: Option<ShapeFile>,
     pub initial: Option<InitialFile>,
     pub model: Option<ModelFile>,
+    pub modes: Option<ModesFile>,
+}
+
+/// Natural frequencies of the initial state.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct ModesFile {
+    pub count: Option<i64>,
 }
 
 /// Departures from the specified model, for studies.
@@ -107,6 +115,9 @@ pub struct SensorFile {
 #[serde(deny_unknown_fields)]
 pub struct ShapeFile {
     pub points: Option<i64>,
+    /// Quantities read at the shape points (`shape_<field>[i]`).
+    #[serde(default)]
+    pub fields: Vec<String>,
 }
 
 #[derive(Deserialize, Debug)]

@@ -231,16 +231,9 @@ pub(super) fn sensor(c: &Checker, i: usize, s: &SensorFile) -> Result<Sensor, Sc
     let q = c.required(
         s.quantity.as_deref(),
         &key("quantity"),
-        "one of u1, u2, w, v1, v2, vw",
+        &format!("one of {}", Quantity::NAMES.join(", ")),
     )?;
-    let quantity = [
-        Quantity::U1,
-        Quantity::U2,
-        Quantity::W,
-        Quantity::V1,
-        Quantity::V2,
-        Quantity::Vw,
-    ][c.one_of(q, &Quantity::NAMES, &key("quantity"))?];
+    let quantity = Quantity::ALL[c.one_of(q, &Quantity::NAMES, &key("quantity"))?];
     Ok(Sensor {
         name,
         at,

@@ -11,10 +11,13 @@ mod claims;
 mod file;
 mod items;
 pub mod params;
+pub mod quantity;
+pub mod readouts;
 mod syntax;
 pub mod variables;
 
 pub use params::{Param, ParamError, ParamValues, Range, Std, VarType, Variability};
+pub use quantity::{Quantity, Reading, SectionQuantity};
 
 use std::fmt;
 use std::path::Path;
@@ -122,32 +125,6 @@ pub struct Load {
     pub time: TimeLaw,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Quantity {
-    U1,
-    U2,
-    W,
-    V1,
-    V2,
-    Vw,
-}
-
-impl Quantity {
-    pub const NAMES: [&'static str; 6] = ["u1", "u2", "w", "v1", "v2", "vw"];
-
-    /// The nodal dof it reads and whether it reads velocities.
-    pub fn dof(self) -> (usize, bool) {
-        match self {
-            Quantity::U1 => (0, false),
-            Quantity::U2 => (1, false),
-            Quantity::W => (2, false),
-            Quantity::V1 => (0, true),
-            Quantity::V2 => (1, true),
-            Quantity::Vw => (2, true),
-        }
-    }
-}
-
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sensor {
     pub name: String,
@@ -233,6 +210,10 @@ pub struct Scene {
     pub inputs: Vec<Input>,
     /// Number of shape samples (0: none).
     pub shape_points: usize,
+    /// Quantities read at the shape samples besides the position (`[shape] fields`).
+    pub shape_fields: Vec<Quantity>,
+    /// Natural frequencies of the initial state reported as `frequency[k]` (`[modes] count`).
+    pub modes: usize,
     pub initial: Initial,
     pub model: ModelOptions,
     /// The file's text, exactly as read (what an FMU carries in `resources/`).

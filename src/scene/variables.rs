@@ -119,6 +119,13 @@ pub enum OutputId {
     },
     ShapeX(usize),
     ShapeY(usize),
+    /// `[shape] fields` entry `field` at shape sample `point`.
+    ShapeField {
+        field: usize,
+        point: usize,
+    },
+    /// Natural frequency `index` (0-based, ascending) of the initial state, in Hz.
+    Frequency(usize),
     /// The running estimate of Lyapunov exponent `index` (0-based), per second or (with
     /// `per_period`) per forcing period.
     Lyapunov {
@@ -171,7 +178,7 @@ pub const MAX_SENSORS: usize = (REACTION_VR - SENSOR_VR) as usize;
 pub const MAX_SUPPORTS: usize = ((SHAPE_X_VR - REACTION_VR) / 3) as usize;
 pub const MAX_SHAPE_POINTS: usize = (SHAPE_Y_VR - SHAPE_X_VR) as usize;
 
-fn output(
+pub(super) fn output(
     name: String,
     vr: u32,
     unit: Option<&str>,
@@ -246,34 +253,15 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
     }
     vars.extend(lyapunov_outputs(scene));
     for (i, s) in scene.sensors.iter().enumerate() {
-        let (dof, velocity) = s.quantity.dof();
-        let unit = match (dof, velocity) {
-            (2, false) => "rad",
-            (2, true) => "rad/s",
-            (_, false) => "m",
-            (_, true) => "m/s",
-        };
         let description = if s.description.is_empty() {
-            let what = [
-                "Displacement u1",
-                "Displacement u2",
-                "Rotation w",
-                "Velocity v1",
-                "Velocity v2",
-                "Angular velocity vw",
-            ];
-            format!(
-                "{} at {} of the arc length",
-                what[velocity as usize * 3 + dof],
-                s.at
-            )
+            format!("{} at {} of the arc length", s.quantity.what(), s.at)
         } else {
             s.description.clone()
         };
         vars.push(output(
             s.name.clone(),
             SENSOR_VR + i as u32,
-            Some(unit),
+            Some(s.quantity.unit()),
             description,
             OutputId::Sensor(i),
         ));
@@ -330,6 +318,7 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
             ));
         }
     }
+    vars.extend(super::readouts::outputs(scene));
     vars
 }
 

@@ -46,7 +46,8 @@ pub fn initial_displacements(
     };
     let well = values.get(branch.well_param);
     let probe = setup.sensors[branch.sensor];
-    let (dof, _) = scene.sensors[branch.sensor].quantity.dof();
+    let dof = (scene.sensors[branch.sensor].quantity.displacement_dof())
+        .expect("the branch sensor reads a displacement (checked with the scene)");
     let sensor = |u: &[f64]| rod.interpolate(u, probe.point, dof);
     let stable =
         |solver: &mut StaticSolver, u: &[f64]| solver.negative_eigenvalues(rod, u) == Some(0);

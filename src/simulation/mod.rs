@@ -5,6 +5,7 @@
 //! - [`initial`]: the initial static state (load stepping, branch choice);
 //! - [`supports`]: moving supports, speed changes as impulses, reactions;
 //! - [`outputs`]: sensors, shape, reactions and energies by output id;
+//! - [`readouts`]: accelerations, section quantities and natural frequencies;
 //! - [`snapshot`]: clock, energy ledger and snapshots for exact restarts;
 //! - `stepping`: communication steps, sub-steps, cuts and the ledger of each sub-step;
 //! - `analysis`: Lyapunov exponents and the `perturbation` kick.
@@ -14,6 +15,7 @@
 mod analysis;
 pub mod initial;
 pub mod outputs;
+pub mod readouts;
 pub mod setup;
 pub mod snapshot;
 mod stepping;
@@ -114,6 +116,8 @@ pub struct Simulation {
     motion: Option<MotionSolver>,
     /// Lyapunov exponents and the `perturbation` kick.
     analysis: analysis::Analysis,
+    /// Accelerations, section quantities and natural frequencies.
+    readouts: readouts::Readouts,
 }
 
 impl Simulation {
@@ -151,7 +155,9 @@ impl Simulation {
             0 => None,
             _ => Some(MotionSolver::new(&setup.rod).map_err(SimError::InitialState)?),
         };
+        let readouts = readouts::Readouts::new(&scene, &values, &setup, &initial.u)?;
         let sim = Simulation {
+            readouts,
             integrator,
             energies: Cell::new(Some((0.0, energy.initial_energy))),
             energy,

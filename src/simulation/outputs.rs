@@ -11,18 +11,18 @@ const BLOWN_UP: f64 = 1e100;
 impl Simulation {
     /// The value of an output at the current time.
     pub fn output(&self, id: OutputId) -> f64 {
-        let rod = self.rod();
-        let state = self.state();
         match id {
             OutputId::Standard(s) => self.standard_output(s),
             OutputId::Sensor(i) => {
-                let (dof, velocity) = self.scene().sensors[i].quantity.dof();
-                let x = if velocity { &state.v } else { &state.u };
-                rod.interpolate(x, self.setup().sensors[i].point, dof)
+                self.read(self.scene().sensors[i].quantity, self.setup().sensors[i])
             }
             OutputId::Reaction { support, component } => self.reactions()[support][component],
             OutputId::ShapeX(i) => self.shape_point(i)[0],
             OutputId::ShapeY(i) => self.shape_point(i)[1],
+            OutputId::ShapeField { field, point } => {
+                self.read(self.scene().shape_fields[field], self.setup().shape[point])
+            }
+            OutputId::Frequency(k) => self.frequency(k),
             OutputId::Lyapunov { index, per_period } => self
                 .analysis
                 .exponent(index, per_period.then_some(self.setup().loads.frequency)),

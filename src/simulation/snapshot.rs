@@ -5,7 +5,7 @@ use crate::scene::Variability;
 use serde::{Deserialize, Serialize};
 
 /// Version of [`Snapshot`]'s layout; bump it when the fields change.
-pub const SNAPSHOT_VERSION: u32 = 4;
+pub const SNAPSHOT_VERSION: u32 = 5;
 
 /// Simulation time as a step counter (model: `t_n = n dt`, not a running sum): while
 /// communication steps keep the same sub-step `step`, sub-step `n` starts at
@@ -105,6 +105,8 @@ pub struct Snapshot {
     pub clock: Clock,
     /// Tangent vectors and growth of the Lyapunov exponents (when `lyapunov` > 0).
     pub lyapunov: Option<super::analysis::LyapunovSnapshot>,
+    /// Accelerations of the last sub-step (empty unless an output reads them).
+    pub accelerations: Vec<f64>,
 }
 
 impl Simulation {
@@ -123,6 +125,7 @@ impl Simulation {
             energy: self.energy,
             clock: self.clock,
             lyapunov: self.analysis.snapshot(),
+            accelerations: self.readouts.accelerations().to_vec(),
         }
     }
 
@@ -177,6 +180,9 @@ impl Simulation {
         self.analysis
             .check(s.lyapunov.as_ref())
             .map_err(SimError::BadSnapshot)?;
+        if !self.readouts.fits(&s.accelerations) {
+            return bad("accelerations of the wrong length or not finite".to_string());
+        }
         let mut values = self.values.clone();
         for (i, &x) in s.values.iter().enumerate() {
             let p = &self.scene.params[i];
@@ -205,6 +211,7 @@ impl Simulation {
         self.energy = s.energy;
         self.energies.set(None);
         self.analysis.restore(&self.values, s.lyapunov.as_ref());
+        self.readouts.restore(&s.accelerations);
         // Finite numbers can still make outputs that are not (a huge velocity, a ledger whose
         // sum overflows): such a snapshot is refused like a non-finite one.
         self.check_outputs()
@@ -234,5 +241,6 @@ impl Simulation {
         self.clock = Clock::start();
         self.last_newton_iterations = 0;
         self.analysis.reset(&self.values);
+        self.readouts.reset();
     }
 }

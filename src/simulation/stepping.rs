@@ -95,6 +95,7 @@ impl Simulation {
                 Ok((newton_iterations, factorizations, energies)) => {
                     std::mem::swap(&mut self.state, &mut self.trial);
                     self.analysis.commit(&self.values);
+                    self.readouts.commit();
                     self.energies.set(energies);
                     self.energy = self.trial_energy;
                     self.clock = self.clock.with_step(h / substeps as f64);
@@ -154,6 +155,9 @@ impl Simulation {
             let t_k = clock.at(k as u64);
             self.motion_increments(k, substeps);
             self.interpolate_load_inputs((k as f64 + 0.5) * dt);
+            if k + 1 == substeps {
+                self.readouts.before_last_substep(&self.trial.v);
+            }
             self.analysis
                 .prepare(&self.setup, t_k, dt, &mut self.integrator);
             let s = &self.setup;
@@ -166,6 +170,7 @@ impl Simulation {
             self.analysis.substep(s, &self.integrator, t_k, dt);
             self.book(t_k + 0.5 * dt, dt);
         }
+        self.readouts.after_last_substep(&self.trial.v, dt);
         // Moving supports end the step exactly at their targets (not a sum of increments).
         let moving = self.setup.held.iter().filter(|h| h.input.is_some());
         for (h, path) in moving.zip(&self.motion_path) {

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -38,7 +39,8 @@ from georod_tools.fmu import FmuModel, Instance, lend
 DEFAULT_SUBSTEPS = 128
 #: The dense window's default resolution: the largest power of two dividing N, up to this.
 MAX_DEFAULT_DENSE_STEPS = 64
-#: The sensors sampled: displacement and velocity of the midspan (every scene of the paper).
+#: The sensors sampled by default: displacement and velocity of the midspan (every scene of the
+#: paper); a case names its own (`CaseConfig.sensor`, `CaseConfig.velocity`).
 OUTPUTS = ("w_mid", "v_mid")
 LYAPUNOV_OUTPUTS = ("lyapunov[1]", "lyapunov_time")
 #: FMU parameters a case sets from its own fields (never through `params`).
@@ -76,6 +78,11 @@ class CaseConfig:
         more; for periodic orbits the estimate only needs to stay near zero.
     prelude: what happens before the forcing starts (e.g. pushing an arch into another
         equilibrium); None starts the forcing at t = 0 from the FMU's initial state.
+    sensor, velocity: the displacement sensor sampled and its velocity partner (the FMU's output
+        names; :mod:`georod_tools.analysis.scene_sensors` picks them for any scene); an empty
+        `velocity` samples the sensor's change over each step's last sub-step instead.
+    forced: the FMU has a harmonic load (parameters F and Omega, set by the case); without one,
+        `Omega` is only the sampling period's ``2 pi / T`` and F is not set.
     """
 
     fmu: str
@@ -92,6 +99,9 @@ class CaseConfig:
     align_periods: int = 10
     prelude: Prelude | None = None
     classify_settings: ClassifySettings = field(default_factory=ClassifySettings)
+    sensor: str = OUTPUTS[0]
+    velocity: str = OUTPUTS[1]
+    forced: bool = True
 
     def __post_init__(self) -> None:
         checks = [
@@ -139,6 +149,11 @@ class CaseConfig:
         return self.period / self.substeps
 
     @property
+    def velocity_name(self) -> str:
+        """The velocity's column name: its sensor, or ``d(<sensor>)/dt`` when sampled."""
+        return self.velocity or f"d({self.sensor})/dt"
+
+    @property
     def dense_steps_per_period(self) -> int:
         return self.dense_steps or default_dense_steps(self.substeps)
 
@@ -152,7 +167,8 @@ class CaseConfig:
         T = self.period
         p: dict[str, float] = dict(self.params)
         p.update({"elements": self.elements, "dt_max": self.dt_max})
-        p.update({"F": 0.0 if self.prelude else self.F, "Omega": self.Omega})
+        if self.forced:
+            p.update({"F": 0.0 if self.prelude else self.F, "Omega": self.Omega})
         if self.lyapunov:
             # Half a sub-step before the period boundary: round-off in the core's clock cannot
             # move the first advanced (or counted) sub-step by one.
@@ -242,32 +258,77 @@ def through_transient(inst: Instance, cfg: CaseConfig) -> int:
 
 def sample(inst: Instance, cfg: CaseConfig, first: int, dense_from: int) -> Trajectory:
     """The sampled periods from period `first`: one step per period, ``T / m`` steps from
-    period `dense_from` on (the dense window)."""
+    period `dense_from` on (the dense window). Without a velocity sensor each step ends with its
+    last sub-step taken alone, and the velocity is the sensor's change over it divided by it."""
     T, m = cfg.period, cfg.dense_steps_per_period
-    names = OUTPUTS + (LYAPUNOV_OUTPUTS if cfg.lyapunov else ())
-    read = inst.reader(names)
+    derived = not cfg.velocity
+    names = (cfg.sensor,) + (() if derived else (cfg.velocity,))
+    read = inst.reader(names + (LYAPUNOV_OUTPUTS if cfg.lyapunov else ()))
+    if derived:
+        step, state = derived_stepping(inst, cfg, read)
+    else:
+        step = inst.step
+
+        def state() -> tuple:
+            got = read()
+            return got[0], got[1], got[2:]
+
     rec = Trajectory()
     for k in range(first, first + cfg.sample_periods):
         if k >= dense_from:
-            if not rec.dense:
-                w, v = read()[:2]
+            if not rec.dense and not (derived and k == first):
+                w, v, _ = state()
                 rec.dense.append((k * T, w, v))
             for j in range(m):
-                inst.step(k * T + j * (T / m), T / m)
+                step(k * T + j * (T / m), T / m)
                 if j < m - 1:
-                    w, v = read()[:2]
+                    w, v, _ = state()
                     rec.dense.append((k * T + (j + 1) * (T / m), w, v))
         else:
-            inst.step(k * T, T)
-        got = read()
+            step(k * T, T)
+        w, v, extra = state()
         t = (k + 1) * T
-        rec.samples.append((t, got[0], got[1]))
+        rec.samples.append((t, w, v))
         if k >= dense_from:
-            rec.dense.append((t, got[0], got[1]))
+            rec.dense.append((t, w, v))
         if cfg.lyapunov:
-            rec.growth.append(got[2] * got[3])
-            rec.counted.append(got[3])
+            rec.growth.append(extra[0] * extra[1])
+            rec.counted.append(extra[1])
     return rec
+
+
+def derived_stepping(
+    inst: Instance, cfg: CaseConfig, read: Callable[[], np.ndarray]
+) -> tuple[Callable[[float, float], None], Callable[[], tuple]]:
+    """A step that takes its last sub-step ``dt`` alone, and the state after it: the sensor and
+    its change over that sub-step divided by ``dt`` (the sub-step's mean velocity: the velocity
+    at its end to first order in ``dt``)."""
+    dt = cfg.dt_max
+    read_sensor = inst.reader((cfg.sensor,))
+    before = [math.nan]
+
+    def step(t: float, h: float) -> None:
+        if h > 1.5 * dt:
+            inst.step(t, h - dt)
+            t, h = t + h - dt, dt
+        before[0] = read_sensor()[0]
+        inst.step(t, h)
+
+    def state() -> tuple:
+        got = read()
+        return got[0], (got[0] - before[0]) / dt, got[1:]
+
+    return step, state
+
+
+def exponent_per_period(inst: Instance, cfg: CaseConfig) -> float:
+    """The core's exponent per sampling period (an unforced FMU has no
+    ``lyapunov_per_period``: its exponent per second times the period)."""
+    if not cfg.lyapunov:
+        return math.nan
+    if cfg.forced:
+        return inst.get(["lyapunov_per_period[1]"])[0]
+    return inst.get(["lyapunov[1]"])[0] * cfg.period
 
 
 def run_case(config: CaseConfig) -> CaseResult:
@@ -281,7 +342,7 @@ def run_case(config: CaseConfig) -> CaseResult:
         first = through_transient(inst, cfg)
         last = first + cfg.sample_periods
         rec = sample(inst, cfg, first, last - max(cfg.dense_periods, 1))
-        per_period = inst.get(["lyapunov_per_period[1]"])[0] if cfg.lyapunov else math.nan
+        per_period = exponent_per_period(inst, cfg)
     strobe = np.asarray(rec.samples, dtype=float)
     dense = np.asarray(rec.dense, dtype=float)
     samples = strobe[:, 1:]

@@ -1,7 +1,14 @@
 """The ``animate`` command: a GIF of the deformed rod from an FMU's shape outputs.
 
-    georod-tools animate FMU [--start-values NAME=VALUE ...] [--stop T] [--step H]
-                             [--frames N] [--fps N] [-o FILE.gif]
+    georod-tools animate FMU [--start-values NAME=VALUE ...] [--inputs FILE.csv] [--stop T]
+                             [--step H] [--frames N] [--fps N] [-o FILE.gif]
+
+``--inputs FILE.csv``: a first column ``time`` (s, increasing) and one column per FMU input, named
+like it; before each communication step each input is set to its value interpolated at the
+step's end (a moving support reaches it there, a load input is held at it over the step).
+Supports are drawn where they are in each frame; a y axis stretched to show a flat motion says by
+how much. ``--field NAME`` colours the rod by the field ``shape_<NAME>[i]`` (``[shape] fields``
+of the scene: e.g. M, the bending moment, moving with the rod).
 
 Default output: a new ``out/animate/<name>_<timestamp>/<name>.gif`` with its run.json; with
 ``-o FILE.gif`` the settings go beside it as ``FILE.gif.json`` and an existing file is kept unless
@@ -43,6 +50,18 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         metavar="NAME=VALUE",
         help="start values of parameters or inputs (e.g. F=1.5 f_ctrl=0.01)",
     )
+    p.add_argument(
+        "--inputs",
+        type=Path,
+        metavar="FILE.csv",
+        help="inputs over time: a time column and one column per FMU input",
+    )
+    p.add_argument(
+        "--field",
+        metavar="NAME",
+        help="colour the rod by the shape field shape_<NAME>[i] (e.g. M; the scene's [shape] "
+        "fields)",
+    )
     p.add_argument("--stop", type=positive_float, help="end time in s, > 0 (default: the FMU's)")
     p.add_argument("--step", type=positive_float, help="communication step in s, > 0 (the FMU's)")
     p.add_argument("--frames", type=positive_int, default=150, help="frames, >= 1 (150)")
@@ -62,12 +81,29 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
         parser.error(f"{args.fmu}: no such FMU (build it with scripts/build_fmus)")
     settings = {
         "start_values": dict(args.set),
+        "inputs": str(args.inputs) if args.inputs else None,
+        "field": args.field,
         "stop": args.stop,
         "step": args.step,
         "frames": args.frames,
         "fps": args.fps,
     }
     model = FmuModel.load(args.fmu)
+    if args.inputs is not None:
+        from georod_tools.report.animation import InputTable
+
+        try:  # refused before anything is written
+            InputTable.read(args.inputs, model.names("input"))
+        except ValueError as e:
+            parser.error(str(e))
+    if args.field is not None:
+        from georod_tools.report.animation import field_outputs
+
+        points = sum(1 for n in model.outputs if n.startswith("shape_x["))
+        try:
+            field_outputs(model, args.field, max(points, 1))
+        except ValueError as e:
+            parser.error(str(e))
     run_record = None
     if args.out is None:
         try:
@@ -89,7 +125,9 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
             parser.error(f"-o {out}: the file exists; pass --overwrite to replace it")
     started = time.time()
     try:
-        motion = record(args.fmu, dict(args.set), args.stop, args.step, args.frames)
+        motion = record(
+            args.fmu, dict(args.set), args.stop, args.step, args.frames, args.inputs, args.field
+        )
     except ValueError as e:
         parser.error(str(e))
     render(motion, out, args.fps)

@@ -11,6 +11,7 @@ Writes a three-panel PNG and the samples as CSV into a new ``out/case/case_<time
 from __future__ import annotations
 
 import argparse
+import math
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -50,8 +51,18 @@ def add_case_options(p: argparse.ArgumentParser, sweep: bool) -> None:
     g.add_argument(
         "--elements",
         type=int_range(2, MAX_ELEMENTS),
-        default=10,
-        help=f"finite elements, 2..{MAX_ELEMENTS} (10)",
+        help=f"finite elements, 2..{MAX_ELEMENTS} (default: the FMU's own mesh)",
+    )
+    g.add_argument(
+        "--sensor",
+        help="the displacement sensor sampled (default: the scene's first displacement sensor); "
+        "its velocity partner (the velocity at the same station) must be a sensor too",
+    )
+    g.add_argument(
+        "--period",
+        type=positive_float,
+        help="sampling period T in s, > 0, for a scene without a harmonic load (with one, "
+        "T = 2 pi / Omega)",
     )
     g.add_argument(
         "--set",
@@ -158,8 +169,28 @@ def base_config(parser: argparse.ArgumentParser, args: argparse.Namespace) -> Ca
         parser.error(f"--scene {args.scene}: {e}")
     if not Path(fmu).is_file():
         parser.error(f"FMU {fmu} not found: build it with scripts/build_fmus or pass --fmu")
+    from georod_tools.analysis.scene_sensors import NotAnalysableError, pick
+
     model = FmuModel.load(fmu)
     params = model.parameters
+    try:
+        sampled = pick(model, args.sensor)
+    except NotAnalysableError as e:
+        parser.error(str(e))
+    if sampled.forced and args.period is not None:
+        parser.error(
+            f"--period: {model.identifier} has a harmonic load, whose period 2 pi / Omega is the "
+            "sampling period; set --Omega instead"
+        )
+    if not sampled.forced:
+        for flag in ("F", "Omega"):
+            if getattr(args, flag) is not None:
+                parser.error(f"--{flag}: {model.identifier} has no harmonic load (no {flag})")
+        if args.period is None:
+            parser.error(
+                f"{model.identifier} has no harmonic load: pass --period T, the sampling period "
+                'in s (or add a [[load]] with time = "harmonic" to the scene)'
+            )
     wanted = [n for n, _ in args.set] + ([args.param] if hasattr(args, "param") else [])
     for name in wanted:
         if name not in params:
@@ -175,9 +206,14 @@ def base_config(parser: argparse.ArgumentParser, args: argparse.Namespace) -> Ca
             parser.error(f"{model.identifier} gives no start value for {name}; pass --{name}")
         return float(value)  # type: ignore[arg-type]
 
-    omega = args.Omega if args.Omega is not None else start("Omega")
-    if not omega > 0:
-        parser.error(f"Omega = {omega}: must be > 0; pass --Omega")
+    if sampled.forced:
+        omega = args.Omega if args.Omega is not None else start("Omega")
+        if not omega > 0:
+            parser.error(f"Omega = {omega}: must be > 0; pass --Omega")
+        amplitude = args.F if args.F is not None else start("F")
+    else:
+        omega, amplitude = 2.0 * math.pi / args.period, 0.0
+    elements = args.elements if args.elements is not None else int(start("elements"))
     classify = ClassifySettings(
         k_max=args.k_max,
         period_tol=args.period_tol,
@@ -187,9 +223,9 @@ def base_config(parser: argparse.ArgumentParser, args: argparse.Namespace) -> Ca
     try:
         return CaseConfig(
             fmu=str(Path(fmu).resolve()),
-            F=args.F if args.F is not None else start("F"),
+            F=amplitude,
             Omega=omega,
-            elements=args.elements,
+            elements=elements,
             substeps=args.substeps,
             params=tuple(args.set),
             transient_periods=args.transient,
@@ -199,6 +235,9 @@ def base_config(parser: argparse.ArgumentParser, args: argparse.Namespace) -> Ca
             lyapunov=not args.no_lyapunov,
             align_periods=args.align,
             classify_settings=classify,
+            sensor=sampled.sensor,
+            velocity=sampled.velocity,
+            forced=sampled.forced,
         )
     except ValueError as e:
         parser.error(str(e))
@@ -258,7 +297,8 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
     except Exception as e:
         record.finish("failed", error=f"{type(e).__name__}: {e}")
         raise
-    stem = f"{Path(cfg.fmu).stem}_F{_fmt(cfg.F)}_Omega{_fmt(cfg.Omega)}"
+    forcing = f"F{_fmt(cfg.F)}_Omega{_fmt(cfg.Omega)}" if cfg.forced else f"T{_fmt(cfg.period)}"
+    stem = f"{Path(cfg.fmu).stem}_{forcing}"
     png = plot_case(result, out / f"{stem}.png")
     csv_path = write_case_csv(result, out / f"{stem}_samples.csv")
     dense = write_dense_csv(result, out / f"{stem}_dense.csv")
@@ -269,9 +309,10 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
         result={"class": c.label, "lyapunov_per_period": result.exponent_per_period},
         outputs=[p.name for p in written],
     )
+    forcing = f"F = {cfg.F:g}, Omega = {cfg.Omega:g}" if cfg.forced else f"T = {cfg.period:g} s"
     print(
-        f"{Path(cfg.fmu).stem}: F = {cfg.F:g}, Omega = {cfg.Omega:g}, {cfg.elements} elements, "
-        f"T/{cfg.substeps} sub-steps, {cfg.transient_periods} + {cfg.sample_periods} periods"
+        f"{Path(cfg.fmu).stem}: {forcing}, {cfg.elements} elements, T/{cfg.substeps} sub-steps, "
+        f"{cfg.transient_periods} + {cfg.sample_periods} periods, sampling {cfg.sensor}"
     )
     print(f"class: {c.label} ({c.note})")
     if result.lyapunov is not None:

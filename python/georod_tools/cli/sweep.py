@@ -86,7 +86,8 @@ def _stem(base: CaseConfig, args: argparse.Namespace) -> str:
 
 
 #: The line `georod-tools --help` shows.
-HELP = "bifurcation diagram over F, Omega or any FMU Real parameter (Dask, resumable)"
+HELP = "bifurcation diagram over F, Omega or any FMU Real parameter (Dask, resumable); exits 1 "
+"when every case failed"
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -235,6 +236,9 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace, argv: Sequenc
     _print_summary(args.param, results, failures, computed, wall)
     for p in (png, summary, samples, record.path, log.path):
         print(f"wrote {p}")
+    if failures and not results:
+        print(f"every case failed ({len(failures)}): nothing to analyse", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -1,9 +1,12 @@
 """The deformed rod over time, from an FMU's shape outputs (``shape_x[i]``, ``shape_y[i]``).
 
 :func:`record` runs the FMU from its initial state (communication step `step`, default: the FMU's
-default experiment) and samples the shape at `frames` equally spaced times; :func:`render` writes
-a GIF (matplotlib + Pillow) with the initial shape in grey, the supports marked, and the time
-shown. The command is ``georod-tools animate`` (:mod:`georod_tools.cli.animate`).
+default experiment) and samples the shape at `frames` equally spaced times, with its inputs
+constant or following a :class:`InputTable` (``--inputs FILE``); :func:`render` writes a GIF
+(matplotlib + Pillow) with the initial shape in grey, the supports marked where they are in each
+frame, the time shown, and the factor by which the y axis is stretched when the motion is too flat
+to see in true proportions. The command is ``georod-tools animate``
+(:mod:`georod_tools.cli.animate`).
 """
 
 from __future__ import annotations
@@ -16,6 +19,54 @@ from pathlib import Path
 import numpy as np
 
 SHAPE = re.compile(r"shape_([xy])\[(\d+)\]$")
+#: The y axis is stretched when the motion's height is below this fraction of its width.
+FLAT = 0.15
+
+
+@dataclass
+class InputTable:
+    """Inputs over time from a CSV file: a first column ``time`` (s, increasing) and one column
+    per FMU input, named like it. Before each communication step each input is set to its value
+    linearly interpolated at the step's end (held beyond the table's ends): a moving support
+    reaches it at the end of the step, a load input is held at it over the step."""
+
+    times: np.ndarray
+    values: dict[str, np.ndarray]
+
+    @classmethod
+    def read(cls, path: Path, inputs: list[str]) -> InputTable:
+        """The table in `path`; ValueError naming the file and what is wrong."""
+        import csv
+
+        try:
+            with path.open(newline="") as f:
+                rows = list(csv.reader(f))
+        except OSError as e:
+            raise ValueError(f"--inputs {path}: {e}") from e
+        if len(rows) < 2 or not rows[0] or rows[0][0].strip() != "time":
+            raise ValueError(
+                f"--inputs {path}: needs a header whose first column is time, then one column "
+                f"per input ({', '.join(inputs) or 'this FMU has no inputs'}), and data rows"
+            )
+        names = [n.strip() for n in rows[0][1:]]
+        unknown = [n for n in names if n not in inputs]
+        if unknown or not names:
+            raise ValueError(
+                f"--inputs {path}: {', '.join(unknown) or 'no input column'}: not an input of "
+                f"the FMU (its inputs: {', '.join(inputs) or 'none'})"
+            )
+        try:
+            data = np.array([[float(x) for x in r] for r in rows[1:] if r], dtype=float)
+        except ValueError as e:
+            raise ValueError(f"--inputs {path}: {e}") from e
+        if data.shape[1] != len(names) + 1 or not np.isfinite(data).all():
+            raise ValueError(f"--inputs {path}: every row needs {len(names) + 1} finite numbers")
+        if np.any(np.diff(data[:, 0]) <= 0):
+            raise ValueError(f"--inputs {path}: the times must increase")
+        return cls(data[:, 0], {n: data[:, j + 1] for j, n in enumerate(names)})
+
+    def at(self, t: float) -> dict[str, float]:
+        return {n: float(np.interp(t, self.times, v)) for n, v in self.values.items()}
 
 
 @dataclass
@@ -29,12 +80,36 @@ class Motion:
     y: np.ndarray
     supports: list[tuple[str, float]]
     unit: str = "m"
+    #: A field along the rod (``shape_<name>[i]``, e.g. the bending moment) that colours it.
+    field: np.ndarray | None = None
+    field_name: str = ""
+    field_unit: str = ""
+
+
+def field_outputs(model: object, name: str, points: int) -> list[str]:
+    """The outputs ``shape_<name>[1..points]`` of `model`; ValueError saying how to add them."""
+    names = [f"shape_{name}[{i}]" for i in range(1, points + 1)]
+    missing = [n for n in names if n not in model.variables]  # type: ignore[attr-defined]
+    if missing:
+        raise ValueError(
+            f"--field {name}: {model.identifier} has no {missing[0]} "  # type: ignore[attr-defined]
+            f'(add "{name}" to the scene\'s [shape] fields)'
+        )
+    return names
 
 
 def record(
-    fmu: Path, start_values: dict[str, float], stop: float | None, step: float | None, frames: int
+    fmu: Path,
+    start_values: dict[str, float],
+    stop: float | None,
+    step: float | None,
+    frames: int,
+    inputs: Path | None = None,
+    field: str | None = None,
 ) -> Motion:
-    """Simulates `fmu` and samples its shape outputs at `frames` + 1 times from 0 to `stop`."""
+    """Simulates `fmu` and samples its shape outputs at `frames` + 1 times from 0 to `stop`, the
+    inputs following the CSV table `inputs` when given (:class:`InputTable`), and the shape field
+    `field` (``shape_<field>[i]``) with them when given."""
     from tqdm import tqdm
 
     from georod_tools.fmu import FmuModel, lend
@@ -49,6 +124,9 @@ def record(
         raise ValueError(f"{fmu}: no shape_x[i] / shape_y[i] outputs (give the scene a [shape])")
     order = sorted(shape["x"])
     names = [shape["x"][i] for i in order] + [shape["y"][i] for i in order]
+    points = len(order)
+    if field is not None:
+        names += field_outputs(model, field, points)
     experiment = model.md.defaultExperiment
     stop = stop if stop is not None else float(experiment.stopTime)
     step = step if step is not None else float(experiment.stepSize)
@@ -57,9 +135,11 @@ def record(
     for name in start_values:
         if name not in model.variables:
             raise ValueError(f"--start-values {name}: not a variable of {model.identifier}")
-    times, xs, ys = [], [], []
+    table = InputTable.read(inputs, model.names("input")) if inputs is not None else None
+    initial = {**start_values, **(table.at(0.0) if table else {})}
+    times, xs, ys, fs = [], [], [], []
     with lend(model, "animate") as inst:
-        inst.initialize(start_values)
+        inst.initialize(initial)
         read = inst.reader(names)
         for k in tqdm(
             range(steps + 1), desc=f"simulating {model.identifier}", unit="step", leave=False
@@ -67,16 +147,24 @@ def record(
             if k in sampled:
                 got = read()
                 times.append(k * step)
-                xs.append(got[: len(order)])
-                ys.append(got[len(order) :])
+                xs.append(got[:points])
+                ys.append(got[points : 2 * points])
+                fs.append(got[2 * points :])
             if k < steps:
+                for name, value in (table.at((k + 1) * step) if table else {}).items():
+                    inst.set(name, value)
                 inst.step(k * step, step)
     scene = tomllib.loads((model.unzipdir / "resources" / "scene.toml").read_text("utf-8"))
     supports = [(s["name"], float(s["at"])) for s in scene.get("support", [])]
     unit = model.variables[names[0]].unit or "m"
-    return Motion(
+    motion = Motion(
         model.identifier, model.guid, np.array(times), np.array(xs), np.array(ys), supports, unit
     )
+    if field is not None:
+        motion.field = np.array(fs)
+        motion.field_name = field
+        motion.field_unit = model.variables[f"shape_{field}[1]"].unit or ""
+    return motion
 
 
 def render(motion: Motion, out: Path, fps: int) -> Path:
@@ -94,27 +182,38 @@ def render(motion: Motion, out: Path, fps: int) -> Path:
     ax.set_xlim(x.min() - 0.05 * width, x.max() + 0.05 * width)
     ax.set_ylim(y.min() - 0.1 * height, y.max() + 0.1 * height)
     # True proportions unless the motion would be a flat line in them (a beam deflecting by a
-    # few percent of its length): then the y axis is stretched, and says so.
-    stretched = height < 0.15 * width
-    if not stretched:
+    # few percent of its length): then the y axis is stretched, by a factor the label gives.
+    stretch = stretch_factor(fig, ax) if height < FLAT * width else 1.0
+    if stretch == 1.0:
         ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel(f"x [{motion.unit}]")
-    ax.set_ylabel(f"y [{motion.unit}]" + (", stretched" if stretched else ""))
+    ax.set_ylabel(f"y [{motion.unit}]" + (f", stretched x{stretch:.3g}" if stretch != 1.0 else ""))
     ax.grid(alpha=0.3)
     ax.plot(x[0], y[0], color="0.75", lw=1.5, label="initial state")
-    points = x.shape[1]
-    for name, at in motion.supports:
-        i = round(at * (points - 1))
-        ax.plot([x[0, i]], [y[0, i]], "k^", ms=8)
-        ax.annotate(name, (x[0, i], y[0, i]), textcoords="offset points", xytext=(4, -14))
+    at = support_positions(motion)
+    (marks,) = ax.plot(at[0, :, 0], at[0, :, 1], "k^", ms=8)
+    names = [
+        ax.annotate(name, tuple(at[0, j]), textcoords="offset points", xytext=(4, -14))
+        for j, (name, _) in enumerate(motion.supports)
+    ]
     (line,) = ax.plot(x[0], y[0], color="C0", lw=2.5, label="deformed rod")
+    colours = field_colours(fig, ax, motion)
+    if colours is not None:
+        line.set_visible(False)
     label = ax.set_title("")
     ax.legend(loc="upper right")
 
     def frame(k: int) -> tuple:
         line.set_data(x[k], y[k])
+        if colours is not None:
+            colours.set_segments(segments(x[k], y[k]))
+            colours.set_array(midpoints(motion.field[k]))  # type: ignore[index]
+        marks.set_data(at[k, :, 0], at[k, :, 1])
+        for j, name in enumerate(names):
+            name.xy = tuple(at[k, j])
         label.set_text(f"{motion.name}: t = {motion.times[k]:.5f} s")
-        return line, label
+        drawn = (colours,) if colours is not None else ()
+        return line, marks, label, *names, *drawn
 
     anim = FuncAnimation(fig, frame, frames=len(motion.times), blit=True)
     bar = tqdm(total=len(motion.times), desc=f"rendering {out.name}", unit="frame", leave=False)
@@ -123,3 +222,58 @@ def render(motion: Motion, out: Path, fps: int) -> Path:
     bar.close()
     plt.close(fig)
     return out
+
+
+def support_positions(motion: Motion) -> np.ndarray:
+    """Where each support is in each frame, ``(frames, supports, 2)``: its station interpolated
+    between the two shape samples around it (equally spaced in arc length)."""
+    points = motion.x.shape[1]
+    s = np.linspace(0.0, 1.0, points)
+    out = np.zeros((len(motion.times), len(motion.supports), 2))
+    for j, (_, at) in enumerate(motion.supports):
+        for k in range(len(motion.times)):
+            out[k, j] = np.interp(at, s, motion.x[k]), np.interp(at, s, motion.y[k])
+    return out
+
+
+def stretch_factor(fig: object, ax: object) -> float:
+    """How much the y axis of `ax` magnifies against the x axis: display length per unit of y
+    over display length per unit of x, from the axes' box and limits."""
+    box = ax.get_position()  # type: ignore[attr-defined]
+    fig_w, fig_h = fig.get_size_inches()  # type: ignore[attr-defined]
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()  # type: ignore[attr-defined]
+    return float((box.height * fig_h / (y1 - y0)) / (box.width * fig_w / (x1 - x0)))
+
+
+def segments(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The rod as segments between consecutive shape samples, ``(points - 1, 2, 2)``."""
+    p = np.column_stack([x, y])
+    return np.stack([p[:-1], p[1:]], axis=1)
+
+
+def midpoints(values: np.ndarray) -> np.ndarray:
+    """A segment's colour value: the mean of its two samples."""
+    return 0.5 * (values[:-1] + values[1:])
+
+
+def field_colours(fig: object, ax: object, motion: Motion) -> object:
+    """The rod coloured by `motion.field` (a diverging colour map centred on zero, over every
+    frame's range) with a colour bar naming the field and its unit; None without a field."""
+    if motion.field is None:
+        return None
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import Normalize
+
+    bound = max(float(np.max(np.abs(motion.field))), 1e-300)
+    colours = LineCollection(
+        segments(motion.x[0], motion.y[0]),
+        cmap="coolwarm",
+        norm=Normalize(-bound, bound),
+        linewidths=3.0,
+        label=f"deformed rod, coloured by {motion.field_name}",
+    )
+    colours.set_array(midpoints(motion.field[0]))
+    ax.add_collection(colours)  # type: ignore[attr-defined]
+    unit = f" [{motion.field_unit}]" if motion.field_unit else ""
+    fig.colorbar(colours, ax=ax, label=f"{motion.field_name}{unit}")  # type: ignore[attr-defined]
+    return colours

@@ -19,26 +19,27 @@ from georod_tools.report.records import now
 
 
 def write_case_csv(result: CaseResult, path: str | Path) -> Path:
-    """The stroboscopic samples: columns k (period index), t [s], w_mid, v_mid."""
+    """The stroboscopic samples: columns k (period index), t [s], then the sampled sensor and its
+    velocity (``w_mid``, ``v_mid`` for the paper's scenes)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     period = result.config.period
     with path.open("w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["k", "t", "w_mid", "v_mid"])
+        w.writerow(["k", "t", result.config.sensor, result.config.velocity_name])
         for t, (wm, vm) in zip(result.sample_times, result.samples, strict=True):
             w.writerow([round(t / period), repr(float(t)), repr(float(wm)), repr(float(vm))])
     return path
 
 
 def write_dense_csv(result: CaseResult, path: str | Path) -> Path | None:
-    """The dense trajectory (t, w_mid, v_mid), if recorded."""
+    """The dense trajectory (t, sensor, velocity), if recorded."""
     if result.dense is None:
         return None
     path = Path(path)
     with path.open("w", newline="") as f:
         w = csv.writer(f)
-        w.writerow(["t", "w_mid", "v_mid"])
+        w.writerow(["t", result.config.sensor, result.config.velocity_name])
         for row in result.dense:
             w.writerow([repr(float(x)) for x in row])
     return path
@@ -91,7 +92,8 @@ def write_sweep_csv(
         w.writerows(row for _, row in rows)
     with samples_path.open("w", newline="") as f:
         w = csv.writer(f)
-        w.writerow([param, "k", "w_mid", "v_mid"])
+        names = [results[0].config.sensor, results[0].config.velocity_name] if results else []
+        w.writerow([param, "k", *(names or ["w_mid", "v_mid"])])
         for r in results:
             x = repr(r.config.value(param))
             for t, (wm, vm) in zip(r.sample_times, r.samples, strict=True):

@@ -34,9 +34,10 @@ POINT_SET = 1e-3
 
 
 def case_title(result: CaseResult) -> str:
-    """``F = 0.7, Omega = 3500: chaotic (lambda = 0.60 / period)``."""
+    """``F = 0.7, Omega = 3500: chaotic (lambda = 0.60 / period)`` (unforced: ``T = 0.01 s``)."""
     cfg = result.config
-    text = f"F = {cfg.F:g}, Omega = {cfg.Omega:g}: {result.classification.label}"
+    what = f"F = {cfg.F:g}, Omega = {cfg.Omega:g}" if cfg.forced else f"T = {cfg.period:g} s"
+    text = f"{what}: {result.classification.label}"
     if result.lyapunov is not None:
         text += f"  (lambda = {result.exponent_per_period:.3f} / period)"
     return text
@@ -50,10 +51,12 @@ def poincare_axes(
     title: str = "",
     small: bool = False,
     color: str = "k",
+    names: tuple[str, str] = ("w_mid", "v_mid"),
 ) -> None:
-    """The section points (w_mid, v_mid) on `ax`. A coordinate in which the points spread less
-    than :data:`POINT_SET` of the swing `size` is centred on them with the width of the swing, so
-    a period-1 point is a point and a period-k orbit shows its k points apart."""
+    """The section points (displacement, velocity: their output `names`) on `ax`. A coordinate
+    in which the points spread less than :data:`POINT_SET` of the swing `size` is centred on them
+    with the width of the swing, so a period-1 point is a point and a period-k orbit shows its k
+    points apart."""
     s = np.asarray(samples, dtype=float)
     ax.plot(s[:, 0], s[:, 1], ".", ms=2.5 if len(s) > 50 else 5, color="k")
     ax.margins(0.08)  # points of a period-k orbit are not drawn on the frame
@@ -64,8 +67,8 @@ def poincare_axes(
             setter(centre - 0.5 * swing, centre + 0.5 * swing)
     ax.ticklabel_format(useOffset=False)
     fs = 7 if small else None
-    ax.set_xlabel(label("w_mid", fmu), fontsize=fs)
-    ax.set_ylabel(label("v_mid", fmu), fontsize=fs)
+    ax.set_xlabel(label(names[0], fmu), fontsize=fs)
+    ax.set_ylabel(label(names[1], fmu), fontsize=fs)
     if small:
         ax.tick_params(labelsize=7)
         ax.xaxis.set_major_locator(MaxNLocator(4))  # readable tick labels in a narrow panel
@@ -78,10 +81,12 @@ def plot_case(result: CaseResult, path: str | Path) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fmu = result.config.fmu
+    names = (result.config.sensor, result.config.velocity_name)
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6), constrained_layout=True)
     ax_p, ax_ph, ax_t = axes
     s = result.samples
-    poincare_axes(ax_p, s, result.size, fmu, f"Poincaré section (t = k T), {len(s)} periods")
+    title = f"Poincaré section (t = k T), {len(s)} periods"
+    poincare_axes(ax_p, s, result.size, fmu, title, names=names)
     if result.dense is not None and result.dense.shape[0] > 1:
         d = result.dense
         ax_ph.plot(d[:, 1], d[:, 2], "-", lw=0.5, color="tab:blue")
@@ -92,9 +97,9 @@ def plot_case(result: CaseResult, path: str | Path) -> Path:
     else:
         for ax in (ax_ph, ax_t):
             ax.text(0.5, 0.5, "no dense trajectory recorded", ha="center", transform=ax.transAxes)
-    ax_ph.set(title="phase portrait (red: t = k T)", xlabel=label("w_mid", fmu))
-    ax_ph.set_ylabel(label("v_mid", fmu))
-    ax_t.set(title="displacement-time diagram", xlabel=label("t"), ylabel=label("w_mid", fmu))
+    ax_ph.set(title="phase portrait (red: t = k T)", xlabel=label(names[0], fmu))
+    ax_ph.set_ylabel(label(names[1], fmu))
+    ax_t.set(title="displacement-time diagram", xlabel=label("t"), ylabel=label(names[0], fmu))
     for ax in (ax_ph, ax_t):
         ax.ticklabel_format(useOffset=False)
     fig.suptitle(case_title(result))
@@ -115,6 +120,7 @@ def sweep_figure(
         2, 1, figsize=(10, 7), sharex=True, height_ratios=(3, 1.3), constrained_layout=True
     )
     fmu = results[0].config.fmu if results else None
+    sensor = results[0].config.sensor if results else "w_mid"
     if results:
         # One artist for all cases (one per case draws several times slower).
         xs_all = np.concatenate([np.full(len(r.samples), r.config.value(param)) for r in results])
@@ -123,7 +129,7 @@ def sweep_figure(
     title = f"bifurcation diagram over {param}"
     if failures:
         title += f" ({len(failures)} failed case{'s' if len(failures) > 1 else ''})"
-    ax_b.set(ylabel=label("w_mid", fmu, "stroboscopic") + " at t = k T", title=title)
+    ax_b.set(ylabel=label(sensor, fmu, "stroboscopic") + " at t = k T", title=title)
     xs = [r.config.value(param) for r in results]
     lam = [r.exponent_per_period for r in results]
     if any(math.isfinite(v) for v in lam):

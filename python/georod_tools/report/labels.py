@@ -21,7 +21,10 @@ FALLBACK = {
 
 
 def unit(name: str, fmu: str | Path | None = None) -> str:
-    """The unit of `name`: the FMU's declaration when `fmu` is a readable FMU that has one."""
+    """The unit of `name`: the FMU's declaration when `fmu` is a readable FMU that has one; the
+    rate ``d(<output>)/dt`` of an output has the output's unit per second."""
+    if name.startswith("d(") and name.endswith(")/dt"):
+        return f"{unit(name[2:-4], fmu)}/s"
     if fmu is not None and Path(fmu).is_file():
         from georod_tools.fmu import FmuModel
 

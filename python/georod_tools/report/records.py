@@ -55,8 +55,11 @@ def fresh_folder(parent: Path, name: str) -> Path:
     return path
 
 
-def prepare_output(out: Path, resume: bool = False, overwrite: bool = False) -> Path:
-    """Checks (and creates) the output folder `out` for a new run, a resumed one or an overwrite.
+def prepare_output(
+    out: Path, resume: bool = False, overwrite: bool = False, resumable: bool = True
+) -> Path:
+    """Checks (and creates) the output folder `out` for a new run, a resumed one or an overwrite
+    (`resumable`: the command has ``--resume``, which the refusal then offers).
 
     Refuses (OutputRefusedError): a non-empty folder without `resume` or `overwrite`; `resume`
     of a folder without run.json; `overwrite` of a non-empty folder without run.json (not
@@ -76,9 +79,10 @@ def prepare_output(out: Path, resume: bool = False, overwrite: bool = False) -> 
         return out
     if entries and not overwrite:
         shown = ", ".join(entries[:5]) + (", ..." if len(entries) > 5 else "")
+        resume_hint = "--resume to continue the run recorded there, " if resumable else ""
         raise OutputRefusedError(
-            f"--out {out}: the folder is not empty ({shown}); pass --resume to continue the run "
-            "recorded there, --overwrite to replace it, or choose another --out"
+            f"--out {out}: the folder is not empty ({shown}); pass {resume_hint}--overwrite to "
+            "replace it, or choose another --out"
         )
     if entries:  # overwrite
         if not has_record:
@@ -324,7 +328,7 @@ def new_run(
     """The output folder of a new run (`out`, or a fresh ``parent/<name>_<timestamp>``), checked
     by :func:`prepare_output`, with its run.json started. Raises OutputRefusedError."""
     folder = out if out is not None else fresh_folder(parent, name)
-    prepare_output(folder, overwrite=overwrite)
+    prepare_output(folder, overwrite=overwrite, resumable=False)
     record = RunRecord.create(folder, command, settings, fmus)
     record.start_session(argv, options(args))
     return record

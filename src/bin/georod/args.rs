@@ -28,6 +28,8 @@ pub struct Options {
     pub count: usize,
     /// `modes`: also write the equilibria's displacement vectors here.
     pub states: Option<String>,
+    /// `simulate`: the outputs written, by name (empty: the default columns).
+    pub outputs: Vec<String>,
     pub help: bool,
 }
 
@@ -57,6 +59,7 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
         load: None,
         count: 6,
         states: None,
+        outputs: Vec::new(),
         help: false,
     };
     let mut it = args.iter();
@@ -97,6 +100,9 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
             "--load" => o.load = Some(number(value()?)?),
             "--count" => o.count = count(value()?)?,
             "--states" => o.states = Some(value()?.clone()),
+            "--outputs" => o
+                .outputs
+                .extend(value()?.split(',').map(|n| n.trim().to_string())),
             other if !other.starts_with('-') => o.positional.push(other.to_string()),
             other => return Err(format!("unknown option `{other}`")),
         }

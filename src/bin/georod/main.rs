@@ -1,10 +1,11 @@
 //! `georod`: package a scene file into an FMU, or run a scene through the Rust core directly.
 mod args;
+mod modal;
+mod report;
 mod statics;
 
 use args::{load_scene, Options};
 use georod::packaging;
-use georod::scene::variables::{self, Causality, Role};
 use georod::scene::Scene;
 use georod::simulation::Simulation;
 use std::fmt::Write as _;
@@ -25,13 +26,17 @@ const COMMANDS: [(&str, &str); 7] = [
     (
         "check",
         "check FILE.toml
-    check a scene file (and its initial state) and list the FMU variables it declares",
+    check a scene file (and its initial state) and list the FMU variables it declares (an array
+    such as shape_x[1..21] on one line), then the initial state's support reactions, sensor
+    values, strain energy and natural frequencies",
     ),
     (
         "simulate",
         "simulate --scene SCENE [--set NAME=VALUE]... [--input NAME=VALUE]... --step H --stop T
-         [--output FILE.csv]
-    time, every sensor, E_kin, E_strain, newton_iterations at each step (CSV)",
+         [--outputs NAME,NAME,...] [--output FILE.csv]
+    time and, at each step, the outputs named (any FMU output: sensors, reactions, shape_M[3],
+    frequency[1], energy_error, ...; default: every sensor, every support reaction, E_kin,
+    E_strain, newton_iterations) as CSV",
     ),
     (
         "bench-steps",
@@ -46,9 +51,13 @@ const COMMANDS: [(&str, &str); 7] = [
     ),
     (
         "modes",
-        "modes --scene SCENE [--set ...] [--load-name LOAD] [--sensor NAME] [--load P] [--count N]
+        "modes FILE.toml [--set ...] [--count N] [--output SHAPES.csv]
+    natural frequencies of any scene's initial state (constant loads on, harmonic and input
+    loads off), printed; the mode shapes written to SHAPES.csv (default <name>_modes.csv) and
+    drawn in SHAPES.svg
+  modes --scene SCENE [--set ...] [--load-name LOAD] [--sensor NAME] [--load P] [--count N]
       [--stop MAX_LOAD] [--states FILE.csv] [--output FILE.csv]
-    natural frequencies about every equilibrium of that path at one load",
+    natural frequencies about every equilibrium of one point load's static path at one load",
     ),
     (
         "demo",
@@ -86,36 +95,6 @@ fn simulation(o: &Options) -> Result<Simulation, String> {
         sim.set_input(i, *value).map_err(|e| e.to_string())?;
     }
     Ok(sim)
-}
-
-/// Rows `time,<sensors>,E_kin,E_strain,newton_iterations` from t = 0 at each step.
-fn trajectory(sim: &mut Simulation, step: f64, stop: f64) -> Result<String, String> {
-    let scene = sim.scene().clone();
-    let mut csv = String::from("time");
-    for s in &scene.sensors {
-        let _ = write!(csv, ",{}", s.name);
-    }
-    csv.push_str(",E_kin,E_strain,newton_iterations\n");
-    let steps = (stop / step).round() as usize;
-    let row = |sim: &Simulation, t: f64, csv: &mut String| {
-        let _ = write!(csv, "{t:e}");
-        for i in 0..scene.sensors.len() {
-            let _ = write!(csv, ",{:e}", sim.output(variables::OutputId::Sensor(i)));
-        }
-        let _ = writeln!(
-            csv,
-            ",{:e},{:e},{}",
-            sim.kinetic_energy(),
-            sim.strain_energy(),
-            sim.last_newton_iterations()
-        );
-    };
-    row(sim, 0.0, &mut csv);
-    for _ in 0..steps {
-        sim.advance(step).map_err(|e| e.to_string())?;
-        row(sim, sim.time(), &mut csv);
-    }
-    Ok(csv)
 }
 
 fn write_or_print(output: Option<&str>, text: &str) -> Result<(), String> {
@@ -176,18 +155,11 @@ fn check(o: &Options) -> Result<(), String> {
     let [file] = o.positional.as_slice() else {
         return Err("check takes one scene file: georod check FILE.toml".to_string());
     };
-    let scene = Scene::load(file).map_err(|e| e.to_string())?;
-    packaging::check_initial_state(&scene)?;
+    let scene = Arc::new(Scene::load(file).map_err(|e| e.to_string())?);
+    let sim = Simulation::new(scene.clone(), scene.defaults())
+        .map_err(|e| format!("{}: with its default parameters: {e}", scene.name))?;
     println!("{file}: scene {} is valid", scene.name);
-    for v in variables::variables(&scene) {
-        let kind = match (v.causality, v.role) {
-            (Causality::Parameter, _) => "parameter",
-            (Causality::Input, _) => "input",
-            (_, Role::Output(_)) => "output",
-            _ => "",
-        };
-        println!("  {kind:9} {:24} {}", v.name, v.description);
-    }
+    print!("{}", report::listing(&scene, &sim));
     Ok(())
 }
 
@@ -230,7 +202,8 @@ fn demo(dir: &str) -> Result<(), String> {
     let w0 = sim.output_by_name("w_mid").unwrap_or(f64::NAN);
     let period = 2.0 * std::f64::consts::PI / omega;
     let step = period / 50.0;
-    let csv = trajectory(&mut sim, step, 20.0 * period)?;
+    let columns = report::columns(&scene, &["w_mid".into(), "v_mid".into()])?;
+    let csv = report::trajectory(&mut sim, &columns, step, 20.0 * period)?;
     std::fs::create_dir_all(dir).map_err(|e| format!("{dir}: {e}"))?;
     let path = format!("{dir}/demo_core_buckled_beam.csv");
     std::fs::write(&path, &csv).map_err(|e| format!("{path}: {e}"))?;
@@ -282,7 +255,15 @@ fn check_command_line(command: &str, o: &Options) -> Result<(), String> {
             "{command} takes one scene file: georod {command} FILE.toml"
         ));
     }
-    if let (false, Some(extra)) = (one_file, o.positional.first()) {
+    let modal = command == "modes" && o.scene.is_none();
+    if modal && o.positional.len() != 1 {
+        return Err(
+            "modes takes one scene file (georod modes FILE.toml), or --scene for the \
+             path-following form"
+                .to_string(),
+        );
+    }
+    if let (false, false, Some(extra)) = (one_file, modal, o.positional.first()) {
         return Err(format!(
             "unexpected argument `{extra}` ({command} takes options only)"
         ));
@@ -339,13 +320,30 @@ fn run(args: &[String]) -> Result<(), Failure> {
         "simulate" => {
             let (step, stop) = (o.step.unwrap_or_default(), o.stop.unwrap_or_default());
             let mut sim = simulation(&o)?;
-            let csv = trajectory(&mut sim, step, stop)?;
+            let columns = report::columns(&sim.scene().clone(), &o.outputs)?;
+            let csv = report::trajectory(&mut sim, &columns, step, stop)?;
             write_or_print(o.output.as_deref(), &csv)?
         }
         "bench-steps" => bench_steps(&o)?,
         "path" => {
             let csv = statics::static_path(&o)?;
             write_or_print(o.output.as_deref(), &csv)?
+        }
+        "modes" if o.scene.is_none() => {
+            let file = &o.positional[0];
+            let report = modal::modes_of_scene(file, &o)?;
+            let default = format!(
+                "{}_modes.csv",
+                Path::new(file)
+                    .file_stem()
+                    .map_or("scene".into(), |s| s.to_string_lossy())
+            );
+            let csv = o.output.clone().unwrap_or(default);
+            let svg = Path::new(&csv).with_extension("svg");
+            std::fs::write(&csv, report.csv).map_err(|e| format!("{csv}: {e}"))?;
+            std::fs::write(&svg, report.svg).map_err(|e| format!("{}: {e}", svg.display()))?;
+            print!("{}", report.text);
+            println!("wrote the mode shapes to {csv} and {}", svg.display());
         }
         "modes" => {
             let csv = statics::modes(&o)?;

@@ -123,14 +123,14 @@ fn sensor(scene: &Scene, o: &Options, rod: &Rod) -> Result<(String, PointOnRod, 
         None => scene
             .sensors
             .iter()
-            .position(|s| s.quantity.dof() == (1, false)),
+            .position(|s| s.quantity.displacement_dof() == Some(1)),
     };
-    let s = index
+    let (s, dof) = index
         .map(|i| &scene.sensors[i])
-        .filter(|s| !s.quantity.dof().1)
+        .and_then(|s| Some((s, s.quantity.displacement_dof()?)))
         .ok_or("--sensor: name a displacement sensor of the scene")?;
     let point = rod.point_at(s.at * rod.curve.length());
-    Ok((s.name.clone(), point, s.quantity.dof().0))
+    Ok((s.name.clone(), point, dof))
 }
 
 impl StaticPath {

@@ -1,0 +1,181 @@
+//! What sensors and shape fields read beyond displacements and velocities: accelerations over
+//! the last sub-step, and the section quantities (strains, stress resultants, fiber stresses)
+//! from the elements' own strains and resultants. Section quantities are computed when read
+//! (an element or two per reading); accelerations cost one copy of the velocities per
+//! communication step, and only in scenes that read them.
+use super::setup::Setup;
+use super::{SimError, Simulation};
+use crate::model::Rod;
+use crate::scene::{ParamValues, Quantity, Reading, Scene, SectionQuantity, Std};
+
+/// The section's geometry for fiber stresses: area, second moment of area, depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fibers {
+    pub area: f64,
+    pub inertia: f64,
+    /// Distance between the top (`+d2`) and the bottom (`-d2`) fiber.
+    pub depth: f64,
+}
+
+impl Fibers {
+    /// The rectangle `b x h` (`h` in the plane of motion).
+    pub fn rectangle(values: &ParamValues) -> Fibers {
+        let (b, h) = (values.std(Std::Width), values.std(Std::Height));
+        Fibers {
+            area: b * h,
+            inertia: b * h * h * h / 12.0,
+            depth: h,
+        }
+    }
+}
+
+/// Accelerations of the last sub-step and the section's fiber geometry.
+pub(super) struct Readouts {
+    /// `(v_(n+1) - v_n) / dt` of the last sub-step of the last communication step, per dof;
+    /// empty when no output reads accelerations (nothing is then copied in a step).
+    accelerations: Vec<f64>,
+    trial_accelerations: Vec<f64>,
+    /// The trial's velocities before its last sub-step.
+    velocity_before: Vec<f64>,
+    fibers: Fibers,
+    /// `frequency[k]` in Hz (`[modes] count` of them).
+    frequencies: Vec<f64>,
+}
+
+/// Whether any output of the scene reads an acceleration.
+fn reads_accelerations(scene: &Scene) -> bool {
+    let sensors = scene.sensors.iter().map(|s| s.quantity);
+    sensors
+        .chain(scene.shape_fields.iter().copied())
+        .any(Quantity::is_acceleration)
+}
+
+impl Readouts {
+    /// The readouts of a simulation whose initial displacements are `initial` (its natural
+    /// frequencies are computed here, once).
+    pub(super) fn new(
+        scene: &Scene,
+        values: &ParamValues,
+        setup: &Setup,
+        initial: &[f64],
+    ) -> Result<Readouts, SimError> {
+        let n = if reads_accelerations(scene) {
+            setup.rod.dofs()
+        } else {
+            0
+        };
+        Ok(Readouts {
+            accelerations: vec![0.0; n],
+            trial_accelerations: vec![0.0; n],
+            velocity_before: vec![0.0; n],
+            fibers: Fibers::rectangle(values),
+            frequencies: natural_frequencies(&setup.rod, initial, scene.modes)?,
+        })
+    }
+
+    /// Called before the last sub-step of an attempt, with the trial's velocities.
+    pub(super) fn before_last_substep(&mut self, v: &[f64]) {
+        if !self.velocity_before.is_empty() {
+            self.velocity_before.copy_from_slice(v);
+        }
+    }
+
+    /// Called after the last sub-step (of size `dt`) of an attempt.
+    pub(super) fn after_last_substep(&mut self, v: &[f64], dt: f64) {
+        for ((a, after), before) in self
+            .trial_accelerations
+            .iter_mut()
+            .zip(v)
+            .zip(&self.velocity_before)
+        {
+            *a = (after - before) / dt;
+        }
+    }
+
+    /// The attempt succeeded: its accelerations are the state's.
+    pub(super) fn commit(&mut self) {
+        std::mem::swap(&mut self.accelerations, &mut self.trial_accelerations);
+    }
+
+    /// Back to rest (before the first step no sub-step has been taken: 0).
+    pub(super) fn reset(&mut self) {
+        self.accelerations.fill(0.0);
+    }
+
+    /// The accelerations for a snapshot (empty when the scene reads none).
+    pub(super) fn accelerations(&self) -> &[f64] {
+        &self.accelerations
+    }
+
+    /// Whether a snapshot's accelerations fit this scene (and are finite).
+    pub(super) fn fits(&self, a: &[f64]) -> bool {
+        a.len() == self.accelerations.len() && a.iter().all(|x| x.is_finite())
+    }
+
+    /// Restores the accelerations of a snapshot that [`Readouts::fits`].
+    pub(super) fn restore(&mut self, a: &[f64]) {
+        self.accelerations.copy_from_slice(a);
+    }
+}
+
+/// The `count` lowest natural frequencies (Hz) of the rod about `u` (undamped, the tangent
+/// stiffness at `u` with the held dofs removed, the mass matrix of the model); an unstable
+/// direction (`omega^2 < 0`) gives `-sqrt(-omega^2) / (2 pi)`.
+pub fn natural_frequencies(rod: &Rod, u: &[f64], count: usize) -> Result<Vec<f64>, SimError> {
+    if count == 0 {
+        return Ok(Vec::new());
+    }
+    let modes = crate::model::modal_subspace::lowest_modes(rod, u, count)
+        .map_err(|why| SimError::BadArgument(format!("[modes] count = {count}: {why}")))?;
+    Ok(modes.iter().map(|(lambda, _)| hertz(*lambda)).collect())
+}
+
+/// `omega / (2 pi)` of `lambda = omega^2`, signed: `-sqrt(-lambda) / (2 pi)` when negative.
+pub fn hertz(lambda: f64) -> f64 {
+    lambda.signum() * lambda.abs().sqrt() / std::f64::consts::TAU
+}
+
+impl Simulation {
+    /// `frequency[k + 1]` (Hz) of the initial state.
+    pub fn frequency(&self, k: usize) -> f64 {
+        self.readouts.frequencies[k]
+    }
+
+    /// `quantity` at arc length `s` (a sensor's or a shape sample's point `point`).
+    pub fn read(&self, quantity: Quantity, point: super::setup::Probe) -> f64 {
+        let rod = self.rod();
+        match quantity.reading() {
+            Reading::Nodal { dof, order } => {
+                let x = match order {
+                    0 => &self.state().u,
+                    1 => &self.state().v,
+                    _ => &self.readouts.accelerations,
+                };
+                rod.interpolate(x, point.point, dof)
+            }
+            Reading::Section(q) => self.section_quantity(q, point.s),
+        }
+    }
+
+    /// A section quantity at arc length `s` (docs/model.md, "Section quantities").
+    pub fn section_quantity(&self, q: SectionQuantity, s: f64) -> f64 {
+        let rod = self.rod();
+        let f = rod.section_forces_at(&self.state().u, s);
+        let c = &rod.section;
+        let Fibers {
+            area,
+            inertia,
+            depth,
+        } = self.readouts.fibers;
+        match q {
+            SectionQuantity::N => f.n,
+            SectionQuantity::Q => f.q,
+            SectionQuantity::M => f.m,
+            SectionQuantity::Eps => f.n / c.ea,
+            SectionQuantity::Gamma => f.q / c.ga,
+            SectionQuantity::Kappa => f.m / c.ei,
+            SectionQuantity::SigmaTop => f.n / area - f.m * depth / (2.0 * inertia),
+            SectionQuantity::SigmaBottom => f.n / area + f.m * depth / (2.0 * inertia),
+        }
+    }
+}
