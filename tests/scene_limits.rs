@@ -36,7 +36,9 @@ const ELEMENTS: usize = 2400;
 
 fn scene_text(n: Counts) -> String {
     let mut t =
-        String::from("name = \"Big\"\n[geometry]\nshape = \"straight\"\nL = 10.0\n[defaults]\n");
+        String::from(
+        "name = \"Big\"\n[geometry]\nshape = \"straight\"\nL = 10.0\n[defaults]\nE = 1.2e4\nrho = 1e-6\n",
+    );
     writeln!(t, "elements = {ELEMENTS}").unwrap();
     for i in 0..n.params {
         writeln!(t, "[[parameter]]\nname = \"p{i}\"\nstart = {i}.0").unwrap();

@@ -4,6 +4,7 @@ pub mod bands;
 pub mod element;
 pub mod geometry;
 pub mod loads;
+pub mod mesh;
 pub mod modal;
 pub mod rod;
 pub mod section;

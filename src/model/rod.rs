@@ -14,6 +14,8 @@ use nalgebra::Vector2;
 
 #[path = "rod_energy.rs"]
 mod rod_energy;
+#[path = "rod_points.rs"]
+mod rod_points;
 #[path = "rod_tangent.rs"]
 mod rod_tangent;
 
@@ -42,6 +44,8 @@ pub struct Rod {
     damping_bands: Bands,
     /// Arc length of each node.
     pub node_s: Vec<f64>,
+    /// Equal elements (points are found by division instead of a search).
+    uniform: bool,
     /// Constrained (fixed or prescribed) dofs, per global dof ([`Rod::fix`]).
     pub fixed: Vec<bool>,
     /// The constrained dofs in increasing order.
@@ -58,13 +62,40 @@ impl Rod {
         let node_s: Vec<f64> = (0..=n)
             .map(|i| curve.length() * i as f64 / n as f64)
             .collect();
+        Rod::build(curve, section, damping, node_s, vec![length; n], true)
+    }
+
+    /// Elements between the nodes at `fractions` of the arc length (increasing, from 0 to 1);
+    /// no dof constrained.
+    pub fn with_nodes(
+        curve: ReferenceCurve,
+        section: Section,
+        damping: f64,
+        fractions: &[f64],
+    ) -> Rod {
+        assert!(fractions.len() >= 2, "a rod needs at least one element");
+        let total = curve.length();
+        let node_s: Vec<f64> = fractions.iter().map(|f| total * f).collect();
+        let lengths = node_s.windows(2).map(|w| w[1] - w[0]).collect();
+        Rod::build(curve, section, damping, node_s, lengths, false)
+    }
+
+    fn build(
+        curve: ReferenceCurve,
+        section: Section,
+        damping: f64,
+        node_s: Vec<f64>,
+        lengths: Vec<f64>,
+        uniform: bool,
+    ) -> Rod {
+        let n = lengths.len();
         let elements = (0..n)
             .map(|e| {
                 let alpha = GAUSS_POINTS.map(|xi| {
                     let (_, nb) = shape_functions(xi);
-                    curve.tangent_angle(node_s[e] + nb * length)
+                    curve.tangent_angle(node_s[e] + nb * lengths[e])
                 });
-                Element::new(length, alpha)
+                Element::new(lengths[e], alpha)
             })
             .collect();
         let mut rod = Rod {
@@ -72,10 +103,13 @@ impl Rod {
             section,
             damping,
             elements,
-            inertia: vec![ElementInertia::new(&section, damping, length); n],
+            inertia: (lengths.iter())
+                .map(|&l| ElementInertia::new(&section, damping, l))
+                .collect(),
             mass_bands: Bands::default(),
             damping_bands: Bands::default(),
             node_s,
+            uniform,
             fixed: vec![false; 3 * (n + 1)],
             constrained: Vec::new(),
             lumped: false,
@@ -250,46 +284,6 @@ impl Rod {
     ) {
         self.mass_bands
             .add_bracket_times(&self.damping_bands, bracket, c, z, out);
-    }
-
-    /// The point at arc length `s` (clamped to the rod).
-    pub fn point_at(&self, s: f64) -> PointOnRod {
-        let n = self.elements.len();
-        let total = self.curve.length();
-        let x = (s / total * n as f64).clamp(0.0, n as f64);
-        let element = (x.floor() as usize).min(n - 1);
-        let local = x - element as f64;
-        PointOnRod {
-            element,
-            weights: (1.0 - local, local),
-        }
-    }
-
-    /// The point `s = S/2`, where the crown load acts and the outputs are taken.
-    pub fn midspan(&self) -> PointOnRod {
-        self.point_at(0.5 * self.curve.length())
-    }
-
-    /// Dof `k` of a nodal vector interpolated at `p`.
-    pub fn interpolate(&self, x: &[f64], p: PointOnRod, k: usize) -> f64 {
-        let (na, nb) = p.weights;
-        na * x[3 * p.element + k] + nb * x[3 * p.element + 3 + k]
-    }
-
-    /// Nodal forces of a unit uniform load per unit length along `-e2` (fixed direction).
-    pub fn add_uniform_transverse_load(&self, out: &mut [f64], magnitude: f64) {
-        for (e, el) in self.elements.iter().enumerate() {
-            let half = 0.5 * magnitude * el.length;
-            out[3 * e + U2] -= half;
-            out[3 * (e + 1) + U2] -= half;
-        }
-    }
-
-    /// Nodal forces of a point force of `magnitude` along `-e2` at `p`.
-    pub fn add_point_transverse_load(&self, out: &mut [f64], p: PointOnRod, magnitude: f64) {
-        let (na, nb) = p.weights;
-        out[3 * p.element + U2] -= na * magnitude;
-        out[3 * (p.element + 1) + U2] -= nb * magnitude;
     }
 
     /// Current position of node `i`.

@@ -6,7 +6,7 @@
 use super::checker::{entry, Checker};
 use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::{claims, items, variables};
+use super::{claims, items, sections, variables};
 use super::{
     Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor,
 };
@@ -48,6 +48,23 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         let i = params.iter().position(|p| p.name == "H").expect("arc");
         params[i].start = h;
     }
+    require_material(&c, &raw)?;
+    let number_in_defaults = |name: &str| match raw.defaults.get(name) {
+        None => Ok(None),
+        Some(toml::Value::Float(x)) => Ok(Some(*x)),
+        Some(toml::Value::Integer(i)) => Ok(Some(*i as f64)),
+        Some(other) => c.err(
+            format!("defaults.{name}"),
+            format!("{other} is not a number"),
+        ),
+    };
+    let (section, dimensions, section_shear) = sections::section(
+        &c,
+        raw.section.as_ref(),
+        &number_in_defaults,
+        params::SECTION_AT,
+    )?;
+    params.splice(params::SECTION_AT..params::SECTION_AT, dimensions);
     apply_defaults(&c, &raw, &mut params, harmonic)?;
     for (i, p) in raw.parameter.iter().enumerate() {
         let param = scene_parameter(&c, i, p, &params)?;
@@ -78,7 +95,22 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         }
     };
     let initial = initial(&c, &raw, &sensors, &params)?;
-    let model = model(&c, &raw)?;
+    let mut model = model(&c, &raw)?;
+    if let Some(factor) = section_shear {
+        if raw.model.as_ref().is_some_and(|m| m.shear_factor.is_some()) {
+            return c.err(
+                "section.shear_factor",
+                "also given in [model]: give the shear factor once",
+            );
+        }
+        model.shear_factor = factor;
+    }
+    if section.shape == sections::SectionShape::General && model.shear_factor != 1.0 {
+        return c.err(
+            "model.shear_factor",
+            "a general section gives its shear area As directly: no shear_factor",
+        );
+    }
 
     let mut scene = Scene {
         name,
@@ -93,8 +125,12 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         shape_points,
         initial,
         model,
+        section,
         source: text.to_string(),
     };
+    if let Err(e) = scene.section.check(&scene.defaults()) {
+        return c.err(format!("section.{}", e.name), e.message);
+    }
     if let Err((key, message)) = claims::check_blocks(&scene) {
         return c.err(key, message);
     }
@@ -112,13 +148,12 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
             );
         }
     }
+    // The declared range of `elements`: from the fewest that put every station on a node.
+    let (lo, hi) = scene.element_range();
+    scene.params[super::Std::Elements as usize].range = Range::between(lo as f64, hi as f64);
     if let Err(e) = scene.check_mesh(scene.defaults().elements()) {
         return c.err("defaults.elements", e.message);
     }
-    // The declared range of `elements`: from the fewest to the most elements that put every
-    // support on a node (the default does, so there are some).
-    let (lo, hi) = scene.element_range().expect("the default count works");
-    scene.params[super::Std::Elements as usize].range = Range::between(lo as f64, hi as f64);
     Ok(scene)
 }
 
@@ -183,6 +218,27 @@ fn geometry(c: &Checker, raw: &SceneFile) -> Result<(Geometry, f64, Option<f64>)
     Ok((geometry, span, rise))
 }
 
+/// A scene names its material: no silent default for `E` and `rho` (a forgotten one would run
+/// with numbers no engineer chose).
+fn require_material(c: &Checker, raw: &SceneFile) -> Result<(), SceneError> {
+    let missing: Vec<&str> = ["E", "rho"]
+        .into_iter()
+        .filter(|k| !raw.defaults.contains_key(*k))
+        .collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    let keys: Vec<String> = missing.iter().map(|k| format!("defaults.{k}")).collect();
+    c.err(
+        keys.join(", "),
+        format!(
+            "missing: a scene gives its material in [defaults]: add {} (for example steel: \
+             E = 210e9 Pa, rho = 7850 kg/m3; aluminium: E = 70e9 Pa, rho = 2700 kg/m3)",
+            missing.join(" and ")
+        ),
+    )
+}
+
 fn apply_defaults(
     c: &Checker,
     raw: &SceneFile,
@@ -200,6 +256,13 @@ fn apply_defaults(
             );
         }
         let Some(p) = params.iter_mut().find(|p| &p.name == name) else {
+            if name == "b" || name == "h" {
+                return c.err(
+                    key,
+                    "b and h are the dimensions of a rectangle: give this scene's section \
+                     dimensions in [section]",
+                );
+            }
             debug_assert!(!harmonic);
             return c.err(
                 key,
@@ -227,7 +290,10 @@ fn scene_parameter(
 ) -> Result<Param, SceneError> {
     let key = |k: &str| entry("parameter", i, p.name.as_ref(), k);
     let name = c.identifier(p.name.as_ref(), &key("name"))?;
-    if params::is_standard_name(&name) || existing.iter().any(|q| q.name == name) {
+    if params::is_standard_name(&name)
+        || sections::is_dimension_name(&name)
+        || existing.iter().any(|q| q.name == name)
+    {
         return c.err(
             key("name"),
             format!("`{name}` is already a parameter of this scene"),

@@ -25,6 +25,43 @@ pub struct SceneFile {
     pub shape: Option<ShapeFile>,
     pub initial: Option<InitialFile>,
     pub model: Option<ModelFile>,
+    pub section: Option<SectionFile>,
+}
+
+/// The cross section: a shape and its dimensions.
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SectionFile {
+    pub shape: Option<String>,
+    pub b: Option<f64>,
+    pub h: Option<f64>,
+    #[serde(rename = "D")]
+    pub diameter: Option<f64>,
+    pub t: Option<f64>,
+    #[serde(rename = "A")]
+    pub area: Option<f64>,
+    #[serde(rename = "I")]
+    pub inertia: Option<f64>,
+    #[serde(rename = "As")]
+    pub shear_area: Option<f64>,
+    pub depth: Option<f64>,
+    pub shear_factor: Option<f64>,
+}
+
+impl SectionFile {
+    /// Every dimension key with its value, if given.
+    pub fn dimensions(&self) -> [(&'static str, Option<f64>); 8] {
+        [
+            ("b", self.b),
+            ("h", self.h),
+            ("D", self.diameter),
+            ("t", self.t),
+            ("A", self.area),
+            ("I", self.inertia),
+            ("As", self.shear_area),
+            ("depth", self.depth),
+        ]
+    }
 }
 
 /// Departures from the specified model, for studies.

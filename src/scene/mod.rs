@@ -11,6 +11,7 @@ mod claims;
 mod file;
 mod items;
 pub mod params;
+pub mod sections;
 mod syntax;
 pub mod variables;
 
@@ -235,6 +236,8 @@ pub struct Scene {
     pub shape_points: usize,
     pub initial: Initial,
     pub model: ModelOptions,
+    /// The cross section: its shape and the parameters of its dimensions.
+    pub section: sections::CrossSection,
     /// The file's text, exactly as read (what an FMU carries in `resources/`).
     pub source: String,
 }
@@ -322,60 +325,42 @@ impl Scene {
                 ));
             }
         }
+        self.section.check(values)?;
         self.check_mesh(values.elements())
     }
 
-    /// Whether every support falls on a node of a mesh of `elements` equal elements; if not,
-    /// the error says which counts work.
+    /// The stations that are nodes of every mesh (supports, with both ends), sorted: the
+    /// boundaries of the segments the elements are spread over.
+    pub fn mesh_stations(&self) -> Vec<f64> {
+        crate::model::mesh::segment_boundaries(self.supports.iter().map(|s| s.at))
+    }
+
+    /// Whether `elements` can put every station on a node (one element per segment at least);
+    /// if not, the error says which counts work.
     pub fn check_mesh(&self, elements: usize) -> Result<(), ParamError> {
-        let off = self.supports.iter().find(|s| !on_node(s.at, elements));
-        let Some(support) = off else { return Ok(()) };
-        let works = self.node_counts();
-        let hint = match works {
-            Some(base) => format!(
-                "element counts that put every support on a node: multiples of {base} \
-                 ({base}, {}, {}, ...)",
-                2 * base,
-                3 * base
-            ),
-            None => format!("no element count up to {MAX_ELEMENTS} puts every support on a node"),
-        };
+        let (lo, hi) = self.element_range();
+        if (lo..=hi).contains(&elements) {
+            return Ok(());
+        }
+        let stations = self.mesh_stations();
         Err(params::refuse(
             params::ELEMENTS,
             format!(
-                "{elements} elements put support `{}` (at {} of the length) between two nodes; {hint}",
-                support.name, support.at
+                "{elements} is out of range: must be in [{lo}, {hi}] (the {} segments between \
+                 the ends and the supports need one element each at least)",
+                stations.len() - 1
             ),
         ))
     }
 
-    /// The smallest element count that puts every support on a node (all multiples work).
-    pub fn node_counts(&self) -> Option<usize> {
-        (1..=MAX_ELEMENTS).find(|&n| self.supports_on_nodes(n))
-    }
-
-    fn supports_on_nodes(&self, elements: usize) -> bool {
-        self.supports.iter().all(|s| on_node(s.at, elements))
-    }
-
-    /// The smallest and the largest element count in [`MIN_ELEMENTS`, `MAX_ELEMENTS`] that put
-    /// every support on a node: the declared range of `elements`, whose bounds are accepted.
-    /// `None` if no count does.
-    pub fn element_range(&self) -> Option<(usize, usize)> {
-        let lo = (MIN_ELEMENTS..=MAX_ELEMENTS).find(|&n| self.supports_on_nodes(n))?;
-        let hi = (lo..=MAX_ELEMENTS)
-            .rev()
-            .find(|&n| self.supports_on_nodes(n))?;
-        Some((lo, hi))
+    /// The fewest and the most elements: one per segment between the stations (at least
+    /// [`MIN_ELEMENTS`]) up to [`MAX_ELEMENTS`]; every count between works.
+    pub fn element_range(&self) -> (usize, usize) {
+        let fewest = crate::model::mesh::fewest_elements(&self.mesh_stations());
+        (fewest.max(MIN_ELEMENTS), MAX_ELEMENTS)
     }
 }
 
 /// The widest range of `elements` (a scene declares the part of it its supports allow).
 pub const MIN_ELEMENTS: usize = 2;
 pub const MAX_ELEMENTS: usize = 100_000;
-
-/// Whether station `at` (a fraction of the length) is a node of `elements` equal elements.
-pub fn on_node(at: f64, elements: usize) -> bool {
-    let x = at * elements as f64;
-    (x - x.round()).abs() <= 1e-9 * elements.max(1) as f64
-}

@@ -1,6 +1,7 @@
 //! From a scene and its parameter values to the model: the meshed rod with its held degrees of
 //! freedom, the loads, and the points where sensors and shape samples read the state.
 use crate::model::loads::{LoadShape, LoadTime};
+use crate::model::mesh;
 use crate::model::{LoadSet, PointOnRod, ReferenceCurve, Rod, Section};
 use crate::scene::{Geometry, LoadKind, ParamValues, Scene, Slot, Std, TimeLaw};
 
@@ -48,19 +49,30 @@ pub fn curve(scene: &Scene, values: &ParamValues) -> ReferenceCurve {
     }
 }
 
-/// Meshes the scene. The values must have passed [`Scene::check`] (supports on nodes).
+/// Meshes the scene. The values must have passed [`Scene::check`] (enough elements).
 pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
-    let mut section = Section::rectangular(
+    let (e, nu, rho) = (
         values.std(Std::E),
         values.std(Std::Nu),
         values.std(Std::Rho),
-        values.std(Std::Width),
-        values.std(Std::Height),
     );
+    let mut section = match scene.section.rectangle(values) {
+        Some((b, h)) => Section::rectangular(e, nu, rho, b, h),
+        None => {
+            let p = scene.section.properties(values);
+            Section::from_properties(e, nu, rho, p.area, p.inertia, p.shear_area)
+        }
+    };
     let model = scene.model;
     section.ga *= model.shear_factor;
     let n = values.elements();
-    let mut rod = Rod::new(curve(scene, values), section, values.std(Std::Damping), n);
+    let (curve, damping) = (curve(scene, values), values.std(Std::Damping));
+    // Every station a node: the uniform mesh where the stations are its nodes, else the
+    // elements spread over the segments between them.
+    let mut rod = match mesh::node_fractions(&scene.mesh_stations(), n) {
+        None => Rod::new(curve, section, damping, n),
+        Some(fractions) => Rod::with_nodes(curve, section, damping, &fractions),
+    };
     if model.lumped_mass {
         rod = rod.with_lumped_mass();
     }
@@ -71,7 +83,7 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
     let mut support_nodes = Vec::new();
     let mut held = Vec::new();
     for (k, s) in scene.supports.iter().enumerate() {
-        let node = (s.at * n as f64).round() as usize;
+        let node = rod.node_at(s.at * length);
         support_nodes.push(node);
         for c in (0..3).filter(|&c| s.fixed[c]) {
             let input = scene
