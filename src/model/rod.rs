@@ -8,6 +8,7 @@ use super::element::{
     GAUSS_POINTS,
 };
 use super::geometry::ReferenceCurve;
+use super::rayleigh::StiffnessDamping;
 use super::section::Section;
 use crate::solver::BlockTridiagonal;
 use nalgebra::Vector2;
@@ -52,6 +53,8 @@ pub struct Rod {
     constrained: Vec<usize>,
     /// Lumped (diagonal) instead of consistent mass and damping matrices.
     pub lumped: bool,
+    /// `beta K0` of Rayleigh damping, part of the damping matrix (none: no cost).
+    stiffness_damping: Option<StiffnessDamping>,
 }
 
 impl Rod {
@@ -113,6 +116,7 @@ impl Rod {
             fixed: vec![false; 3 * (n + 1)],
             constrained: Vec::new(),
             lumped: false,
+            stiffness_damping: None,
         };
         rod.update_bands();
         rod
@@ -146,6 +150,19 @@ impl Rod {
         }
         self.update_bands();
         self
+    }
+
+    /// Rayleigh damping `alpha M + beta K0` added to the damping matrix, `K0` the tangent
+    /// stiffness at `u0` (the initial state).
+    pub fn with_rayleigh(&mut self, alpha: f64, beta: f64, u0: &[f64]) {
+        if alpha != 0.0 {
+            for m in &mut self.inertia {
+                m.damping += alpha * m.translational;
+                m.rotational_damping += alpha * m.rotational;
+            }
+            self.update_bands();
+        }
+        self.stiffness_damping = (beta != 0.0).then(|| StiffnessDamping::new(self, beta, u0));
     }
 
     pub fn nodes(&self) -> usize {
@@ -249,6 +266,9 @@ impl Rod {
         for (e, m) in self.inertia.iter().enumerate() {
             jac.add_element_pattern(e, &m.coefficients(true), scale, self.lumped);
         }
+        if let Some(k0) = &self.stiffness_damping {
+            k0.add_to(jac, scale);
+        }
     }
 
     /// `out += scale * M x`.
@@ -259,6 +279,9 @@ impl Rod {
     /// `out += scale * C x` (damping).
     pub fn add_damping_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
         self.damping_bands.add_times(x, out, scale);
+        if let Some(k0) = &self.stiffness_damping {
+            k0.add_times(x, out, scale);
+        }
     }
 
     /// `out += mass_scale * M x + damping_scale * C y` in one pass.
@@ -270,6 +293,9 @@ impl Rod {
     ) {
         self.mass_bands.add_times(x, out, mass_scale);
         self.damping_bands.add_times(y, out, damping_scale);
+        if let Some(k0) = &self.stiffness_damping {
+            k0.add_times(y, out, damping_scale);
+        }
     }
 
     /// `out += M (a x + b y) + c C x + z`: the linear part of the midpoint rule's residual and
@@ -284,6 +310,10 @@ impl Rod {
     ) {
         self.mass_bands
             .add_bracket_times(&self.damping_bands, bracket, c, z, out);
+        if let Some(k0) = &self.stiffness_damping {
+            let ((_, x), _) = bracket;
+            k0.add_times(x, out, c);
+        }
     }
 
     /// Current position of node `i`.

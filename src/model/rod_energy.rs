@@ -19,7 +19,8 @@ impl Rod {
 
     /// `v^T C v` (power dissipated by the damping).
     pub fn dissipation_rate(&self, v: &[f64]) -> f64 {
-        self.damping_bands.form(v)
+        let rayleigh = self.stiffness_damping.as_ref().map_or(0.0, |k0| k0.form(v));
+        self.damping_bands.form(v) + rayleigh
     }
 
     /// Linear momentum `sum M v` over the translations.

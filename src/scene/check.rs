@@ -6,7 +6,7 @@
 use super::checker::{entry, Checker};
 use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::{claims, items, sections, variables};
+use super::{claims, damping, items, sections, variables};
 use super::{
     Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor,
 };
@@ -126,6 +126,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         initial,
         model,
         section,
+        rayleigh: damping::rayleigh(&c, raw.damping.as_ref())?,
         source: text.to_string(),
     };
     if let Err(e) = scene.section.check(&scene.defaults()) {

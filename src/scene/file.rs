@@ -26,6 +26,17 @@ pub struct SceneFile {
     pub initial: Option<InitialFile>,
     pub model: Option<ModelFile>,
     pub section: Option<SectionFile>,
+    pub damping: Option<DampingFile>,
+}
+
+/// Rayleigh damping: coefficients, or a ratio at two frequencies.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct DampingFile {
+    pub alpha: Option<f64>,
+    pub beta: Option<f64>,
+    pub ratio: Option<f64>,
+    pub frequencies: Option<Vec<f64>>,
 }
 
 /// The cross section: a shape and its dimensions.

@@ -8,6 +8,7 @@
 mod check;
 mod checker;
 mod claims;
+pub mod damping;
 mod file;
 mod items;
 pub mod params;
@@ -238,6 +239,8 @@ pub struct Scene {
     pub model: ModelOptions,
     /// The cross section: its shape and the parameters of its dimensions.
     pub section: sections::CrossSection,
+    /// Rayleigh damping (`[damping]`), added to `d`.
+    pub rayleigh: Option<damping::Rayleigh>,
     /// The file's text, exactly as read (what an FMU carries in `resources/`).
     pub source: String,
 }

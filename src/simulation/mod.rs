@@ -130,6 +130,10 @@ impl Simulation {
         setup.loads.frequency = scene.param_index("Omega").map_or(0.0, |i| values.get(i));
         let mut initial =
             DynamicState::at_rest(initial::initial_displacements(&scene, &values, &setup)?);
+        if let Some(r) = scene.rayleigh {
+            // K0: the tangent of the initial static state, a constant matrix.
+            setup.rod.with_rayleigh(r.alpha, r.beta, &initial.u);
+        }
         let static_reactions = supports::static_reactions(&setup, &initial.u);
         let mut integrator = Midpoint::new(&setup.rod);
         let held: Vec<usize> = setup.held.iter().map(|h| h.dof).collect();
