@@ -6,6 +6,7 @@ pub mod geometry;
 pub mod loads;
 pub mod mesh;
 pub mod modal;
+pub mod moving_loads;
 pub mod rayleigh;
 pub mod rod;
 pub mod section;

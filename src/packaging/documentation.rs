@@ -61,6 +61,16 @@ fn scene_summary(scene: &Scene) -> String {
         let place = match l.kind {
             LoadKind::Point { at } => format!("point load at {at}"),
             LoadKind::Distributed => "distributed load (per unit length)".to_string(),
+            LoadKind::Patch { from, to, .. } => {
+                format!("distributed load (per unit length) over [{from}, {to}]")
+            }
+            LoadKind::Moment { at } => format!("point moment at {at}"),
+            LoadKind::Gravity => "gravity (acceleration of the rod's mass)".to_string(),
+            LoadKind::Moving { speed, enter } => format!(
+                "point load moving at {} m/s from t = {} s",
+                slot_text(scene, &speed),
+                slot_text(scene, &enter)
+            ),
         };
         let dir = format!(
             "{}e{}",

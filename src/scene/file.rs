@@ -132,6 +132,12 @@ pub struct LoadFile {
     pub name: Option<String>,
     pub kind: Option<String>,
     pub at: Option<f64>,
+    pub from: Option<f64>,
+    pub to: Option<f64>,
+    pub value_end: Option<toml::Value>,
+    /// A moving load's speed (m/s) and entry time (s): value slots.
+    pub speed: Option<toml::Value>,
+    pub enter: Option<toml::Value>,
     pub direction: Option<String>,
     pub value: Option<toml::Value>,
     pub time: Option<String>,

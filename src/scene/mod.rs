@@ -11,6 +11,7 @@ mod claims;
 pub mod damping;
 mod file;
 mod items;
+mod load_kinds;
 pub mod params;
 pub mod sections;
 mod syntax;
@@ -94,11 +95,31 @@ pub enum LoadKind {
     Point {
         at: f64,
     },
-    /// Per unit length over the whole rod.
+    /// Per unit length over the whole rod, uniform.
     Distributed,
+    /// Per unit length over the stations `[from, to]`, varying linearly from the load's value
+    /// to `value_end` (`None`: uniform).
+    Patch {
+        from: f64,
+        to: f64,
+        value_end: Option<Slot>,
+    },
+    /// A point couple about e3 (counter-clockwise positive); its direction is the rotation dof.
+    Moment {
+        at: f64,
+    },
+    /// An acceleration (the load's value) on the rod's mass: `value rho A` per unit length.
+    Gravity,
+    /// A point force entering at station 0 at the time `enter` and travelling along the arc
+    /// length at `speed` (both slots of fixed parameters or numbers).
+    Moving {
+        speed: Slot,
+        enter: Slot,
+    },
 }
 
-/// A fixed direction: `component` 0 (`e1`) or 1 (`e2`), `sign` +1 or -1.
+/// A fixed direction: `component` 0 (`e1`) or 1 (`e2`), or 2 (the rotation, for moments),
+/// `sign` +1 or -1.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Direction {
     pub component: usize,
@@ -329,6 +350,21 @@ impl Scene {
             }
         }
         self.section.check(values)?;
+        for l in &self.loads {
+            if let LoadKind::Moving {
+                speed: Slot::Param { index, sign },
+                ..
+            } = l.kind
+            {
+                let v = sign * values.get(index);
+                if v <= 0.0 {
+                    return Err(params::refuse(
+                        &self.params[index].name,
+                        format!("the speed of moving load `{}` is {v}: must be > 0", l.name),
+                    ));
+                }
+            }
+        }
         self.check_mesh(values.elements())
     }
 

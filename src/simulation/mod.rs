@@ -124,7 +124,7 @@ impl Simulation {
         let inputs: Vec<f64> = (0..scene.inputs.len())
             .map(|i| crate::scene::variables::input_start(&scene, i, &values))
             .collect();
-        let mut magnitudes = vec![0.0; scene.loads.len()];
+        let mut magnitudes = vec![0.0; setup.loads.len()];
         setup::load_magnitudes(&scene, &values, &inputs, &mut magnitudes);
         setup.loads.set_magnitudes(&magnitudes);
         setup.loads.frequency = scene.param_index("Omega").map_or(0.0, |i| values.get(i));

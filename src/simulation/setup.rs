@@ -2,8 +2,9 @@
 //! freedom, the loads, and the points where sensors and shape samples read the state.
 use crate::model::loads::{LoadShape, LoadTime};
 use crate::model::mesh;
+use crate::model::moving_loads::{MovingLoad, MovingLoads};
 use crate::model::{LoadSet, PointOnRod, ReferenceCurve, Rod, Section};
-use crate::scene::{Geometry, LoadKind, ParamValues, Scene, Slot, Std, TimeLaw};
+use crate::scene::{Geometry, Load, LoadKind, ParamValues, Scene, Slot, Std, TimeLaw};
 
 /// A held (constrained) degree of freedom.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -105,37 +106,48 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
 
     // Harmonic loads with the same amplitude slot share one nodal vector.
     let mut groups: Vec<Slot> = Vec::new();
-    let shapes: Vec<(LoadShape, LoadTime)> = scene
+    let mut time_of = |time: TimeLaw, value: Slot| match time {
+        TimeLaw::Constant => LoadTime::Constant,
+        TimeLaw::Input(_) => LoadTime::Input,
+        TimeLaw::Harmonic => {
+            let group = groups.iter().position(|g| *g == value).unwrap_or_else(|| {
+                groups.push(value);
+                groups.len() - 1
+            });
+            LoadTime::Harmonic { group }
+        }
+    };
+    let mut moving = Vec::new();
+    let mut shapes: Vec<(LoadShape, LoadTime)> = scene
         .loads
         .iter()
-        .map(|l| {
-            let (component, sign) = (l.direction.component, l.direction.sign);
-            let shape = match l.kind {
-                LoadKind::Point { at } => LoadShape::Point {
-                    s: at * length,
-                    component,
-                    sign,
-                },
-                LoadKind::Distributed => LoadShape::Distributed { component, sign },
-            };
-            let time = match l.time {
-                TimeLaw::Constant => LoadTime::Constant,
-                TimeLaw::Input(_) => LoadTime::Input,
-                TimeLaw::Harmonic => {
-                    let group = groups
-                        .iter()
-                        .position(|g| *g == l.value)
-                        .unwrap_or_else(|| {
-                            groups.push(l.value);
-                            groups.len() - 1
-                        });
-                    LoadTime::Harmonic { group }
-                }
-            };
-            (shape, time)
+        .map(|l| match l.kind {
+            LoadKind::Moving { speed, enter } => {
+                moving.push(MovingLoad {
+                    component: l.direction.component,
+                    sign: l.direction.sign,
+                    speed: speed.eval(values),
+                    enter: enter.eval(values),
+                    magnitude: 0.0,
+                });
+                let index = moving.len() - 1;
+                (load_shape(l, length, false), LoadTime::Moving { index })
+            }
+            _ => (load_shape(l, length, false), time_of(l.time, l.value)),
         })
         .collect();
-    let loads = LoadSet::new(&rod, &shapes);
+    // The rising part of each linearly varying load, after the scene's loads (its magnitude is
+    // the load's `value_end`, see `load_magnitudes`).
+    for l in &scene.loads {
+        if let LoadKind::Patch {
+            value_end: Some(end),
+            ..
+        } = l.kind
+        {
+            shapes.push((load_shape(l, length, true), time_of(l.time, end)));
+        }
+    }
+    let loads = LoadSet::new(&rod, &shapes).with_moving(MovingLoads::new(&rod.node_s, moving));
     let probe = |at: f64| Probe {
         point: rod.point_at(at * length),
         s: at * length,
@@ -156,12 +168,65 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
     }
 }
 
-/// The magnitude of every load: its value slot, or for input loads the input's value.
+/// The nodal pattern of a load at unit magnitude. A linearly varying load is two: the part
+/// falling from 1 at `from` to 0 at `to` (`rising = false`, scaled by `value`) and the part
+/// rising from 0 to 1 (scaled by `value_end`).
+pub fn load_shape(load: &Load, length: f64, rising: bool) -> LoadShape {
+    let (component, sign) = (load.direction.component, load.direction.sign);
+    match load.kind {
+        LoadKind::Point { at } | LoadKind::Moment { at } => LoadShape::Point {
+            s: at * length,
+            component,
+            sign,
+        },
+        // Where it enters (its nodal forces follow it: `MovingLoads`).
+        LoadKind::Moving { .. } => LoadShape::Point {
+            s: 0.0,
+            component,
+            sign,
+        },
+        LoadKind::Distributed | LoadKind::Gravity => LoadShape::Distributed { component, sign },
+        LoadKind::Patch {
+            from,
+            to,
+            value_end,
+        } => {
+            let (start, end) = match (value_end, rising) {
+                (None, _) => (1.0, 1.0),
+                (Some(_), false) => (1.0, 0.0),
+                (Some(_), true) => (0.0, 1.0),
+            };
+            LoadShape::Patch {
+                from: from * length,
+                to: to * length,
+                start,
+                end,
+                component,
+                sign,
+            }
+        }
+    }
+}
+
+/// The magnitude of every load: its value slot (gravity: times the mass per length `rho A`),
+/// or for input loads the input's value; then the end values of the linearly varying loads.
 pub fn load_magnitudes(scene: &Scene, values: &ParamValues, inputs: &[f64], out: &mut [f64]) {
-    for (m, l) in out.iter_mut().zip(&scene.loads) {
-        *m = match l.time {
-            TimeLaw::Input(i) => inputs[i],
-            TimeLaw::Constant | TimeLaw::Harmonic => l.value.eval(values),
+    let (scene_loads, ends) = out.split_at_mut(scene.loads.len());
+    for (m, l) in scene_loads.iter_mut().zip(&scene.loads) {
+        *m = match (l.time, l.kind) {
+            (TimeLaw::Input(i), _) => inputs[i],
+            (_, LoadKind::Gravity) => {
+                let area = scene.section.properties(values).area;
+                l.value.eval(values) * values.std(Std::Rho) * area
+            }
+            _ => l.value.eval(values),
         };
+    }
+    let end_values = scene.loads.iter().filter_map(|l| match l.kind {
+        LoadKind::Patch { value_end, .. } => value_end,
+        _ => None,
+    });
+    for (m, end) in ends.iter_mut().zip(end_values) {
+        *m = end.eval(values);
     }
 }

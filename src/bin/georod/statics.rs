@@ -57,17 +57,7 @@ fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
     let rod = s.rod;
     let length = rod.curve.length();
     let load = &scene.loads[path_load(&scene, o)?];
-    let shape = match load.kind {
-        LoadKind::Point { at } => LoadShape::Point {
-            s: at * length,
-            component: load.direction.component,
-            sign: load.direction.sign,
-        },
-        LoadKind::Distributed => LoadShape::Distributed {
-            component: load.direction.component,
-            sign: load.direction.sign,
-        },
-    };
+    let shape = setup::load_shape(load, length, false);
     let mut q = shape.nodal_vector(&rod);
     let mut load0 = 0.0;
     for l in scene.loads.iter().filter(|l| l.time == TimeLaw::Constant) {
