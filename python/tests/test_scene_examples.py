@@ -243,3 +243,59 @@ def test_support_follows_input_derivatives(examples: dict[str, FmuInfo]) -> None
         assert "not an input" in log.messages()[-1]
     finally:
         release(slave)
+
+
+def test_tip_mass_cantilever_hangs_under_both_weights(examples: dict[str, FmuInfo]) -> None:
+    """Static state under gravity: the root carries the bar's weight and the 5 kg motor's (to
+    1e-9: the reaction is the residual of a converged equilibrium)."""
+    info = examples["TipMassCantilever"]
+    slave = instantiate(info)
+    try:
+        ry, w_tip = slave.getReal([info.vr[n] for n in ("root_Ry", "w_tip")])
+    finally:
+        release(slave)
+    weight = 9.81 * (7850.0 * 0.05 * 0.01 * 2.0 + 5.0)
+    assert w_tip < 0.0
+    assert math.isclose(ry, weight, rel_tol=1e-9), (ry, weight)
+
+
+def test_bridge_sags_under_its_weight_and_the_moving_axle(examples: dict[str, FmuInfo]) -> None:
+    """Initial state: the girder's own weight, midspan sag 5 q L^4 / (384 EI) + q L^2 / (8 G A)
+    (q = rho A g; 40 elements: 1e-3). The axle (entering at 0.1 s, leaving at 0.77 s) adds a
+    dynamic deflection whose peak exceeds its static one, P L^3 / (48 EI), at this speed
+    (0.13 of the critical speed) by a few per cent."""
+    info = examples["Bridge"]
+    e, g_mod, rho, b, h, length = 210e9, 210e9 / 2.6, 7850.0, 0.4, 1.0, 20.0
+    ei, ga, q = e * b * h**3 / 12.0, g_mod * b * h, rho * b * h * 9.81
+    sag = 5.0 * q * length**4 / (384.0 * ei) + q * length**2 / (8.0 * ga)
+    slave = instantiate(info)
+    try:
+        w0 = slave.getReal([info.vr["w_mid"]])[0]
+        extra = []
+        for k in range(1000):
+            slave.doStep(k * 1e-3, 1e-3)
+            extra.append(w0 - slave.getReal([info.vr["w_mid"]])[0])
+    finally:
+        release(slave)
+    assert math.isclose(-w0, sag, rel_tol=1e-3), (w0, sag)
+    static = 1e5 * length**3 / (48.0 * ei)
+    peak = max(extra)
+    assert 1.0 < peak / static < 1.3, (peak, static)
+    assert abs(extra[99]) < 1e-6 * static, "the axle acted before it entered"
+
+
+def test_beam_on_foundation_settles_at_hetenyi(examples: dict[str, FmuInfo]) -> None:
+    """After 0.5 s (the foundation's damping, c / (rho A) = 51 /s, has taken the ringing down by
+    exp(-12) at least) the deflection under the load is Hetenyi's P lambda / (2 k) (the rod's
+    shear adds 6e-4, the mesh 1e-3)."""
+    info = examples["BeamOnFoundation"]
+    slave = instantiate(info)
+    try:
+        for k in range(500):
+            slave.doStep(k * 1e-3, 1e-3)
+        w = slave.getReal([info.vr["w_load"]])[0]
+    finally:
+        release(slave)
+    ei, k_soil, load = 210e9 * 0.1 * 0.05**3 / 12.0, 1e6, 1e4
+    lam = (k_soil / (4.0 * ei)) ** 0.25
+    assert math.isclose(-w, load * lam / (2.0 * k_soil), rel_tol=3e-3), w

@@ -1,5 +1,6 @@
 //! The rod model of `shared/spec/model.md`: reference geometry, section, the hybrid element and
 //! the assembled rod with its constraints, loads, mass and damping.
+pub mod attachments;
 pub mod bands;
 pub mod element;
 pub mod geometry;

@@ -2,6 +2,7 @@
 //! state, kept element by element (constant, so the dissipation `beta v^T K0 v` is a quadratic
 //! form of the velocity and the energy ledger stays exact). The mass part, `alpha M`, joins the
 //! rod's damping matrix itself ([`Rod::with_rayleigh`](super::Rod::with_rayleigh)).
+use super::bands::Bands;
 use super::element::{ElementTangent, Vector6};
 use super::Rod;
 use crate::solver::BlockTridiagonal;
@@ -11,6 +12,8 @@ pub struct StiffnessDamping {
     pub beta: f64,
     /// Each element's tangent in the initial state.
     tangents: Vec<ElementTangent>,
+    /// The springs' and foundations' stiffness.
+    attached: Option<Bands>,
 }
 
 impl StiffnessDamping {
@@ -19,12 +22,20 @@ impl StiffnessDamping {
         let mut tangents = vec![ElementTangent::default(); rod.elements.len()];
         let mut force = vec![0.0; rod.dofs()];
         rod.internal_force_and_element_tangents(u0, &mut force, &mut tangents);
-        StiffnessDamping { beta, tangents }
+        let attached = rod.attached_stiffness().cloned();
+        StiffnessDamping {
+            beta,
+            tangents,
+            attached,
+        }
     }
 
     /// `out += scale * beta K0 x`: one pass over the elements.
     pub fn add_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
         let s = scale * self.beta;
+        if let Some(k) = &self.attached {
+            k.add_times(x, out, s);
+        }
         for (e, k) in self.tangents.iter().enumerate() {
             let f = k.mul(&Rod::element_dofs(x, e));
             for (o, f) in out[3 * e..3 * e + 6].iter_mut().zip(f.iter()) {
@@ -34,9 +45,12 @@ impl StiffnessDamping {
     }
 
     /// `jac += scale * beta K0`.
-    pub fn add_to(&self, jac: &mut BlockTridiagonal, scale: f64) {
+    pub fn add_to(&self, rod: &Rod, jac: &mut BlockTridiagonal, scale: f64) {
         for (e, k) in self.tangents.iter().enumerate() {
             jac.add_element(e, k, scale * self.beta);
+        }
+        if self.attached.is_some() {
+            rod.add_attached_stiffness(jac, scale * self.beta);
         }
     }
 
@@ -48,6 +62,7 @@ impl StiffnessDamping {
                 ve.dot(&k.mul(&ve))
             })
             .sum();
-        self.beta * sum
+        let attached = self.attached.as_ref().map_or(0.0, |k| k.form(v));
+        self.beta * (sum + attached)
     }
 }

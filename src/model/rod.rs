@@ -2,6 +2,7 @@
 //! matrices (internal force, tangent, mass, damping, loads). Global dof `3 i + k` is `u1`, `u2`,
 //! `w` (k = 0, 1, 2) of node `i`; element `e` joins nodes `e` and `e + 1`, so its six dofs are
 //! contiguous and the matrices are block tridiagonal.
+use super::attachments::Attachments;
 use super::bands::{Bands, Scaled};
 use super::element::{
     gauss_trig, shape_functions, Element, ElementInertia, ElementTangent, GaussTrig, Vector6,
@@ -13,6 +14,8 @@ use super::section::Section;
 use crate::solver::BlockTridiagonal;
 use nalgebra::Vector2;
 
+#[path = "rod_attachments.rs"]
+mod rod_attachments;
 #[path = "rod_energy.rs"]
 mod rod_energy;
 #[path = "rod_points.rs"]
@@ -55,6 +58,9 @@ pub struct Rod {
     pub lumped: bool,
     /// `beta K0` of Rayleigh damping, part of the damping matrix (none: no cost).
     stiffness_damping: Option<StiffnessDamping>,
+    /// Point masses, springs, dashpots, foundations (in the bands), and the stiffness they add.
+    attachments: Attachments,
+    attached_stiffness: Option<Bands>,
 }
 
 impl Rod {
@@ -117,6 +123,8 @@ impl Rod {
             constrained: Vec::new(),
             lumped: false,
             stiffness_damping: None,
+            attachments: Attachments::default(),
+            attached_stiffness: None,
         };
         rod.update_bands();
         rod
@@ -132,6 +140,7 @@ impl Rod {
         };
         self.mass_bands = coefficients(false);
         self.damping_bands = coefficients(true);
+        (self.attachments).add_to_bands(&mut self.mass_bands, &mut self.damping_bands);
     }
 
     /// The same rod with lumped (diagonal, row-sum) mass and damping matrices instead of the
@@ -150,19 +159,6 @@ impl Rod {
         }
         self.update_bands();
         self
-    }
-
-    /// Rayleigh damping `alpha M + beta K0` added to the damping matrix, `K0` the tangent
-    /// stiffness at `u0` (the initial state).
-    pub fn with_rayleigh(&mut self, alpha: f64, beta: f64, u0: &[f64]) {
-        if alpha != 0.0 {
-            for m in &mut self.inertia {
-                m.damping += alpha * m.translational;
-                m.rotational_damping += alpha * m.rotational;
-            }
-            self.update_bands();
-        }
-        self.stiffness_damping = (beta != 0.0).then(|| StiffnessDamping::new(self, beta, u0));
     }
 
     pub fn nodes(&self) -> usize {
@@ -213,6 +209,11 @@ impl Rod {
                 *r += f[offset + k];
             }
         }
+        if let Some(k) = &self.attached_stiffness {
+            for (j, r) in rows.iter_mut().enumerate() {
+                *r += k.row_times(u, 3 * i + j);
+            }
+        }
         rows
     }
 
@@ -221,6 +222,7 @@ impl Rod {
         assemble(f, &self.elements, u, |_, el, ue, trig| {
             el.internal_force_with(&self.section, ue, trig)
         });
+        self.add_attached_force(u, f);
     }
 
     /// `f =` the energy-momentum discrete gradient between `ua` and `ub` (overwrites).
@@ -230,6 +232,7 @@ impl Rod {
             let (a, b) = (Self::element_dofs(ua, e), Self::element_dofs(ub, e));
             add_element_vector(f, e, &el.discrete_gradient(&self.section, &a, &b));
         }
+        self.add_attached_midpoint_force(ua, ub, f);
     }
 
     /// `f =` the energy-momentum discrete gradient between `ua` and `ub` (overwrites), and
@@ -252,6 +255,8 @@ impl Rod {
             add_element_vector(f, e, &fe);
             jac.add_element(e, &ke, scale);
         }
+        self.add_attached_midpoint_force(ua, ub, f);
+        self.attachments.add_stiffness(jac, scale);
     }
 
     /// `jac += scale * M`.
@@ -259,6 +264,7 @@ impl Rod {
         for (e, m) in self.inertia.iter().enumerate() {
             jac.add_element_pattern(e, &m.coefficients(false), scale, self.lumped);
         }
+        self.attachments.add_mass(jac, scale);
     }
 
     /// `jac += scale * C` (damping).
@@ -266,8 +272,9 @@ impl Rod {
         for (e, m) in self.inertia.iter().enumerate() {
             jac.add_element_pattern(e, &m.coefficients(true), scale, self.lumped);
         }
+        self.attachments.add_damping(jac, scale);
         if let Some(k0) = &self.stiffness_damping {
-            k0.add_to(jac, scale);
+            k0.add_to(self, jac, scale);
         }
     }
 

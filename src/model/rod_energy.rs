@@ -6,10 +6,16 @@ use super::{Rod, ROTATION, U1, U2};
 use nalgebra::Vector2;
 
 impl Rod {
+    /// The elements' strain energy and the energy stored in the springs and foundations.
     pub fn strain_energy(&self, u: &[f64]) -> f64 {
-        (self.elements.iter().enumerate())
+        let attached = self
+            .attached_stiffness
+            .as_ref()
+            .map_or(0.0, |k| 0.5 * k.form(u));
+        let elements: f64 = (self.elements.iter().enumerate())
             .map(|(e, el)| el.strain_energy(&self.section, &Self::element_dofs(u, e)))
-            .sum()
+            .sum();
+        elements + attached
     }
 
     /// `v^T M v / 2`.

@@ -6,7 +6,7 @@
 use super::checker::{entry, Checker};
 use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::{claims, damping, items, sections, variables};
+use super::{attached, claims, damping, items, sections, variables};
 use super::{
     Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor,
 };
@@ -73,6 +73,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
 
     let mut inputs = Vec::new();
     let supports = items::supports(&c, &raw.support, &params, &mut inputs)?;
+    let springs = attached::springs(&c, &raw.spring, &supports)?;
     let loads = items::loads(&c, &raw.load, &mut params, &mut inputs)?;
     items::label_amplitude(&loads, &mut params);
     let sensors = raw
@@ -127,6 +128,9 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         model,
         section,
         rayleigh: damping::rayleigh(&c, raw.damping.as_ref())?,
+        masses: attached::masses(&c, &raw.mass)?,
+        springs,
+        foundations: attached::foundations(&c, &raw.foundation)?,
         source: text.to_string(),
     };
     if let Err(e) = scene.section.check(&scene.defaults()) {
@@ -143,8 +147,9 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
             return c.err(
                 "[[support]]",
                 format!(
-                    "the supports leave the rod free to {free}: it has no static equilibrium. \
-                     Hold more degrees of freedom, or start from [initial] state = \"reference\""
+                    "the supports (with the springs and foundations) leave the rod free to \
+                     {free}: it has no static equilibrium. Hold more degrees of freedom, or start \
+                     from [initial] state = \"reference\""
                 ),
             );
         }
@@ -425,15 +430,22 @@ fn free_rigid_motion(scene: &Scene, span: f64, rise: Option<f64>) -> Option<&'st
     };
     // Rows: what each held dof sees of (translation e1, translation e2, rotation).
     let mut rows: Vec<[f64; 3]> = Vec::new();
+    // Supports, springs and foundations (on u2 at both ends) restrain.
+    let mut held: Vec<(f64, usize)> = Vec::new();
     for s in &scene.supports {
-        let x = curve.position(s.at * curve.length()) / span;
-        for (k, _) in s.fixed.iter().enumerate().filter(|(_, f)| **f) {
-            rows.push(match k {
-                0 => [1.0, 0.0, -x[1]],
-                1 => [0.0, 1.0, x[0]],
-                _ => [0.0, 0.0, 1.0],
-            });
-        }
+        held.extend((0..3).filter(|&k| s.fixed[k]).map(|k| (s.at, k)));
+    }
+    let springs = scene.springs.iter().filter(|s| s.k > 0.0);
+    held.extend(springs.map(|s| (s.at, s.dof)));
+    let foundations = scene.foundations.iter().filter(|f| f.k > 0.0);
+    held.extend(foundations.flat_map(|f| [(f.from, 1), (f.to, 1)]));
+    for (at, k) in held {
+        let x = curve.position(at * curve.length()) / span;
+        rows.push(match k {
+            0 => [1.0, 0.0, -x[1]],
+            1 => [0.0, 1.0, x[0]],
+            _ => [0.0, 0.0, 1.0],
+        });
     }
     let m = nalgebra::DMatrix::from_fn(rows.len(), 3, |i, j| rows[i][j]);
     let rank = if rows.is_empty() { 0 } else { m.rank(1e-9) };

@@ -27,6 +27,43 @@ pub struct SceneFile {
     pub model: Option<ModelFile>,
     pub section: Option<SectionFile>,
     pub damping: Option<DampingFile>,
+    #[serde(default)]
+    pub mass: Vec<MassFile>,
+    #[serde(default)]
+    pub spring: Vec<SpringFile>,
+    #[serde(default)]
+    pub foundation: Vec<FoundationFile>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct MassFile {
+    pub name: Option<String>,
+    pub at: Option<f64>,
+    pub m: Option<f64>,
+    #[serde(rename = "J")]
+    pub rotary: Option<f64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct SpringFile {
+    pub name: Option<String>,
+    pub at: Option<f64>,
+    pub dof: Option<String>,
+    pub k: Option<f64>,
+    pub c: Option<f64>,
+    pub motion: Option<String>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct FoundationFile {
+    pub name: Option<String>,
+    pub k: Option<f64>,
+    pub c: Option<f64>,
+    pub from: Option<f64>,
+    pub to: Option<f64>,
 }
 
 /// Rayleigh damping: coefficients, or a ratio at two frequencies.

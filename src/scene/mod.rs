@@ -5,6 +5,7 @@
 //! or the reference state). [`Scene::parse`] checks a file completely, with messages that name
 //! the file, the key and what is allowed; the packager, the core and the FMU all read scenes
 //! through it.
+pub mod attached;
 mod check;
 mod checker;
 mod claims;
@@ -262,6 +263,9 @@ pub struct Scene {
     pub section: sections::CrossSection,
     /// Rayleigh damping (`[damping]`), added to `d`.
     pub rayleigh: Option<damping::Rayleigh>,
+    pub masses: Vec<attached::PointMass>,
+    pub springs: Vec<attached::Spring>,
+    pub foundations: Vec<attached::Foundation>,
     /// The file's text, exactly as read (what an FMU carries in `resources/`).
     pub source: String,
 }
@@ -368,10 +372,17 @@ impl Scene {
         self.check_mesh(values.elements())
     }
 
-    /// The stations that are nodes of every mesh (supports, with both ends), sorted: the
+    /// The stations that are nodes of every mesh (supports, masses, springs, the ends of the
+    /// foundations, and both ends of the rod), sorted: the
     /// boundaries of the segments the elements are spread over.
     pub fn mesh_stations(&self) -> Vec<f64> {
-        crate::model::mesh::segment_boundaries(self.supports.iter().map(|s| s.at))
+        let supports = self.supports.iter().map(|s| s.at);
+        let masses = self.masses.iter().map(|m| m.at);
+        let springs = self.springs.iter().map(|s| s.at);
+        let foundations = self.foundations.iter().flat_map(|f| [f.from, f.to]);
+        crate::model::mesh::segment_boundaries(
+            supports.chain(masses).chain(springs).chain(foundations),
+        )
     }
 
     /// Whether `elements` can put every station on a node (one element per segment at least);

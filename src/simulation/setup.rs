@@ -1,8 +1,10 @@
 //! From a scene and its parameter values to the model: the meshed rod with its held degrees of
 //! freedom, the loads, and the points where sensors and shape samples read the state.
+use crate::model::attachments::{Attachments, FoundationPart, OnDof};
 use crate::model::loads::{LoadShape, LoadTime};
 use crate::model::mesh;
 use crate::model::moving_loads::{MovingLoad, MovingLoads};
+use crate::model::rod::{ROTATION, U1, U2};
 use crate::model::{LoadSet, PointOnRod, ReferenceCurve, Rod, Section};
 use crate::scene::{Geometry, Load, LoadKind, ParamValues, Scene, Slot, Std, TimeLaw};
 
@@ -81,6 +83,10 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
         rod = rod.with_rotational_damping(model.rotational_damping);
     }
     let length = rod.curve.length();
+    let attachments = attachments(scene, &rod);
+    if !attachments.is_empty() {
+        rod = rod.with_attachments(attachments);
+    }
     let mut support_nodes = Vec::new();
     let mut held = Vec::new();
     for (k, s) in scene.supports.iter().enumerate() {
@@ -136,8 +142,21 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
             _ => (load_shape(l, length, false), time_of(l.time, l.value)),
         })
         .collect();
-    // The rising part of each linearly varying load, after the scene's loads (its magnitude is
-    // the load's `value_end`, see `load_magnitudes`).
+    // The weight of each point mass under each gravity load, after the scene's loads (its
+    // magnitude: the acceleration times the mass, see `load_magnitudes`).
+    for l in scene.loads.iter().filter(|l| l.kind == LoadKind::Gravity) {
+        for m in &scene.masses {
+            let (component, sign) = (l.direction.component, l.direction.sign);
+            let at = LoadShape::Point {
+                s: m.at * length,
+                component,
+                sign,
+            };
+            shapes.push((at, LoadTime::Constant));
+        }
+    }
+    // The rising part of each linearly varying load, after those (its magnitude is the load's
+    // `value_end`).
     for l in &scene.loads {
         if let LoadKind::Patch {
             value_end: Some(end),
@@ -209,7 +228,8 @@ pub fn load_shape(load: &Load, length: f64, rising: bool) -> LoadShape {
 }
 
 /// The magnitude of every load: its value slot (gravity: times the mass per length `rho A`),
-/// or for input loads the input's value; then the end values of the linearly varying loads.
+/// or for input loads the input's value; then the point masses' weights and the end values of
+/// the linearly varying loads.
 pub fn load_magnitudes(scene: &Scene, values: &ParamValues, inputs: &[f64], out: &mut [f64]) {
     let (scene_loads, ends) = out.split_at_mut(scene.loads.len());
     for (m, l) in scene_loads.iter_mut().zip(&scene.loads) {
@@ -222,11 +242,50 @@ pub fn load_magnitudes(scene: &Scene, values: &ParamValues, inputs: &[f64], out:
             _ => l.value.eval(values),
         };
     }
+    let gravity = scene.loads.iter().filter(|l| l.kind == LoadKind::Gravity);
+    let weights = gravity.flat_map(|l| scene.masses.iter().map(|m| l.value.eval(values) * m.m));
     let end_values = scene.loads.iter().filter_map(|l| match l.kind {
-        LoadKind::Patch { value_end, .. } => value_end,
+        LoadKind::Patch { value_end, .. } => value_end.map(|v| v.eval(values)),
         _ => None,
     });
-    for (m, end) in ends.iter_mut().zip(end_values) {
-        *m = end.eval(values);
+    for (m, value) in ends.iter_mut().zip(weights.chain(end_values)) {
+        *m = value;
     }
+}
+
+/// The scene's point masses, springs, dashpots and foundations on the rod's dofs.
+fn attachments(scene: &Scene, rod: &Rod) -> Attachments {
+    let length = rod.curve.length();
+    let node = |at: f64| rod.node_at(at * length);
+    let mut a = Attachments::default();
+    for m in &scene.masses {
+        let n = node(m.at);
+        for (k, value) in [(U1, m.m), (U2, m.m), (ROTATION, m.j)] {
+            if value > 0.0 {
+                a.masses.push(OnDof {
+                    dof: 3 * n + k,
+                    value,
+                });
+            }
+        }
+    }
+    for s in &scene.springs {
+        let dof = 3 * node(s.at) + s.dof;
+        a.springs.push(OnDof { dof, value: s.k });
+        if s.c > 0.0 {
+            a.dashpots.push(OnDof { dof, value: s.c });
+        }
+    }
+    for f in &scene.foundations {
+        // Its ends are nodes: the elements between them are wholly on it.
+        let (first, last) = (node(f.from), node(f.to));
+        for (e, el) in rod.elements.iter().enumerate().take(last).skip(first) {
+            a.foundation.push(FoundationPart {
+                element: e,
+                k: f.k * el.length / 6.0,
+                c: f.c * el.length / 6.0,
+            });
+        }
+    }
+    a
 }
