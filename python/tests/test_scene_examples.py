@@ -299,3 +299,29 @@ def test_beam_on_foundation_settles_at_hetenyi(examples: dict[str, FmuInfo]) -> 
     ei, k_soil, load = 210e9 * 0.1 * 0.05**3 / 12.0, 1e6, 1e4
     lam = (k_soil / (4.0 * ei)) ** 0.25
     assert math.isclose(-w, load * lam / (2.0 * k_soil), rel_tol=3e-3), w
+
+
+def test_support_input_set_in_initialization_mode_enters_the_static_state(
+    examples: dict[str, FmuInfo],
+) -> None:
+    """BeamOnBase with its right end lifted by 10 um during initialization mode: the initial
+    state is the clamped-clamped beam with that end offset, at rest: the end is there and the
+    supports hold it with the shear force delta / (L^3 / (12 EI) + L / (G A)) (Timoshenko),
+    to the mesh's O(l^2) (80 elements) and the tension of the axially held ends, O((delta/L)^2)
+    (1.5e-3 for 1 mm, 1.5e-7 here)."""
+    info = examples["BeamOnBase"]
+    delta, e, nu, b, h, length = 1e-5, 70e9, 0.33, 0.05, 0.02, 1.0
+    ei, ga = e * b * h**3 / 12.0, e / (2.0 * (1.0 + nu)) * b * h
+    shear = delta / (length**3 / (12.0 * ei) + length / ga)
+    slave = instantiate(info, {"elements": 80}, initialize=False)
+    try:
+        slave.enterInitializationMode()
+        slave.setReal([info.vr["right_u2"]], [delta])
+        slave.exitInitializationMode()
+        names = ("left_Ry", "right_Ry", "shape_y[21]", "v_mid")
+        left, right, y_end, v_mid = slave.getReal([info.vr[n] for n in names])
+    finally:
+        release(slave)
+    assert y_end == delta and v_mid == 0.0
+    assert math.isclose(right, shear, rel_tol=1e-3), (right, shear)
+    assert math.isclose(left, -shear, rel_tol=1e-3), (left, shear)
