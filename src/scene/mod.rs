@@ -336,7 +336,8 @@ impl Scene {
         Ok(())
     }
 
-    /// Every range, the conditions between parameters, and that the supports fall on nodes.
+    /// Every range, the conditions between parameters (an arc's rise, a tube's wall, a moving
+    /// load's speed), and that `elements` puts every station on a node.
     pub fn check(&self, values: &ParamValues) -> Result<(), ParamError> {
         for (param, &value) in self.params.iter().zip(&values.0) {
             param.check(value)?;
