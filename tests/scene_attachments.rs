@@ -283,3 +283,44 @@ fn bad_attachments_are_refused() {
     ));
     assert!((sim.rod().node_s[node] - 0.74).abs() < 1e-12);
 }
+
+/// The FMU's documentation page lists the section, masses, springs, foundations and damping.
+#[test]
+fn documentation_lists_the_attachments() {
+    let repo = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    for (example, parts) in [
+        (
+            "TipMassCantilever",
+            vec![
+                "Point mass <code>motor</code> at 1: m = 5 kg",
+                "Rayleigh damping",
+            ],
+        ),
+        (
+            "BeamOnFoundation",
+            vec!["Foundation <code>soil</code> over [0, 1]: k = 1000000 N/m2"],
+        ),
+        (
+            "Bridge",
+            vec!["Section: Rectangle, dimensions <code>b</code>, <code>h</code>"],
+        ),
+    ] {
+        let scene = Scene::load(repo.join(format!("examples/{example}.toml"))).unwrap();
+        let page = georod::packaging::documentation::documentation(&scene, "{guid}");
+        for part in parts {
+            assert!(page.contains(part), "{example}: the page lacks `{part}`");
+        }
+    }
+    let springs = rod(
+        2.0,
+        0.05,
+        0.01,
+        "[[support]]\nname = \"p\"\nat = 0.0\nfix = [\"u1\", \"u2\"]\n\
+         [[spring]]\nname = \"s\"\nat = 1.0\ndof = \"u2\"\nk = 5.0\nc = 0.5\n",
+    );
+    let page = georod::packaging::documentation::documentation(&springs, "{guid}");
+    assert!(
+        page.contains("Spring <code>s</code> at 1 on u2: k = 5, c = 0.5"),
+        "{page}"
+    );
+}
