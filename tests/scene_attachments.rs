@@ -324,3 +324,42 @@ fn documentation_lists_the_attachments() {
         "{page}"
     );
 }
+
+/// `<spring>_force`: before the first step the static force `-k u`; after a step the average
+/// over it, which closes the discrete momentum balance of a rod held only by springs (no
+/// damping `d`): `M (v1 - v0)` summed along e2 equals `h` times the applied load plus the
+/// springs' averaged forces, to the Newton tolerance.
+#[test]
+fn spring_forces_are_static_then_step_averages() {
+    let items = "[[support]]\nname = \"axial\"\nat = 0.5\nfix = [\"u1\"]\n\
+                 [[spring]]\nname = \"left\"\nat = 0.0\ndof = \"u2\"\nk = 1e5\nc = 300.0\n\
+                 [[spring]]\nname = \"right\"\nat = 1.0\ndof = \"u2\"\nk = 2e5\n\
+                 [[load]]\nname = \"p\"\nkind = \"point\"\nat = 0.3\ndirection = \"-e2\"\nvalue = 1e3\n\
+                 [[load]]\nname = \"kick\"\nkind = \"point\"\nat = 0.8\ndirection = \"e2\"\n\
+                 time = \"input\"\n";
+    let scene = rod(2.0, 0.05, 0.05, items);
+    let mut sim = simulation(&scene, &[("dt_max", 1e-4)]);
+    let (left, right) = (output(&sim, "left_force"), output(&sim, "right_force"));
+    // Static: the springs carry the load, by the lever rule (the rod is stiff against them).
+    assert!(
+        ((left + right) / 1e3 - 1.0).abs() < 1e-9,
+        "{left} + {right}"
+    );
+    assert!((left / 700.0 - 1.0).abs() < 1e-3, "left {left}");
+    common::set_input(&mut sim, "kick", 5e3);
+    let rod = sim.rod().clone();
+    let momentum = |s: &Simulation| rod.linear_momentum(&s.state().v)[1];
+    let h = 2e-3;
+    for _ in 0..10 {
+        let before = momentum(&sim);
+        sim.advance(h).unwrap();
+        let forces = output(&sim, "left_force") + output(&sim, "right_force");
+        let applied = 5e3 - 1e3;
+        let change = momentum(&sim) - before;
+        assert!(
+            (change - h * (applied + forces)).abs() < 1e-9 * h * applied,
+            "{change} vs {}",
+            h * (applied + forces)
+        );
+    }
+}

@@ -182,6 +182,7 @@ fn a_scene_at_every_maximum_has_unique_value_references_inside_their_blocks() {
             Role::Output(OutputId::Reaction { .. }) => 3000..10_000,
             Role::Output(OutputId::ShapeX(_)) => 10_000..20_000,
             Role::Output(OutputId::ShapeY(_)) => 20_000..30_000,
+            Role::Output(OutputId::SpringForce(_)) => 1_000_000..u32::MAX,
         };
         assert!(
             range.contains(&v.vr),

@@ -325,3 +325,30 @@ def test_support_input_set_in_initialization_mode_enters_the_static_state(
     assert y_end == delta and v_mid == 0.0
     assert math.isclose(right, shear, rel_tol=1e-3), (right, shear)
     assert math.isclose(left, -shear, rel_tol=1e-3), (left, shear)
+
+
+def test_elastic_bearings_carry_the_weight_then_the_machine(examples: dict[str, FmuInfo]) -> None:
+    """Static: each bearing carries half the beam's weight (its force on the rod is up) and is
+    compressed by it over its stiffness. Running, the bearings' averaged forces keep carrying
+    the weight plus the shaking machine force: over whole forcing periods their mean is the
+    weight again (the beam, far below its first bending frequency, rides the springs)."""
+    info = examples["ElasticBearings"]
+    weight = 7850.0 * 0.2 * 0.3 * 6.0 * 9.81
+    slave = instantiate(info)
+    try:
+        left, right, w_left = slave.getReal(
+            [info.vr[n] for n in ("left_force", "right_force", "w_left")]
+        )
+        assert math.isclose(left, weight / 2.0, rel_tol=1e-9), (left, weight)
+        assert math.isclose(right, weight / 2.0, rel_tol=1e-9), (right, weight)
+        assert math.isclose(-w_left, weight / 2.0 / 5e7, rel_tol=1e-9), w_left
+        h, period = 1e-3, 2.0 * math.pi / 40.0
+        forces = []
+        for k in range(round(5 * period / h)):
+            slave.doStep(k * h, h)
+            forces.append(sum(slave.getReal([info.vr["left_force"], info.vr["right_force"]])))
+    finally:
+        release(slave)
+    assert max(forces) > weight + 1e3 and min(forces) < weight - 1e3
+    late = forces[len(forces) // 5 :]
+    assert abs(np.mean(late) - weight) < 2e-2 * weight

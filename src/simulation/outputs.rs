@@ -23,6 +23,7 @@ impl Simulation {
             OutputId::Reaction { support, component } => self.reactions()[support][component],
             OutputId::ShapeX(i) => self.shape_point(i)[0],
             OutputId::ShapeY(i) => self.shape_point(i)[1],
+            OutputId::SpringForce(k) => self.reactions()[self.setup.support_nodes.len() + k][0],
             OutputId::Lyapunov { index, per_period } => self
                 .analysis
                 .exponent(index, per_period.then_some(self.setup().loads.frequency)),

@@ -38,6 +38,8 @@ pub struct Setup {
     pub held: Vec<Held>,
     pub sensors: Vec<Probe>,
     pub shape: Vec<Probe>,
+    /// `(dof, k, c)` of each spring, for its force output.
+    pub springs: Vec<(usize, f64, f64)>,
 }
 
 /// The reference curve of a scene with these values.
@@ -177,6 +179,9 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
     let shape = (0..points)
         .map(|j| probe(j as f64 / (points - 1).max(1) as f64))
         .collect();
+    let springs = (scene.springs.iter())
+        .map(|s| (3 * rod.node_at(s.at * length) + s.dof, s.k, s.c))
+        .collect();
     Setup {
         rod,
         loads,
@@ -184,6 +189,7 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
         held,
         sensors,
         shape,
+        springs,
     }
 }
 
