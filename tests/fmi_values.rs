@@ -144,8 +144,9 @@ fn one_input_set_by_its_value_reference_moves_only_its_support() {
     ];
     let inputs: Vec<u32> = names.iter().map(|n| vr_of(n)).collect();
     assert_eq!(inputs, (1000..1006).collect::<Vec<u32>>());
-    // The ends of the beam (21 shape points, L = 10).
+    // The ends of the beam (21 shape points).
     let ends = [10_000, 10_020, 20_000, 20_020];
+    let length = scene.defaults().std(georod::scene::Std::Span);
     let fmu = Fmu::new("BeamOnBase");
     fmu.init();
     assert_eq!(fmu.reals(&inputs), [0.0; 6]);
@@ -165,7 +166,7 @@ fn one_input_set_by_its_value_reference_moves_only_its_support() {
         assert_eq!(fmu.reals(&inputs), expected, "after the step");
         // x of both ends, then y: the held u1 stay 0, the u2 are the inputs (to round-off of
         // the interpolation at the ends).
-        let want = [0.0, 10.0, expected[1], expected[4]];
+        let want = [0.0, length, expected[1], expected[4]];
         for (got, want) in fmu.reals(&ends).iter().zip(want) {
             assert!(
                 (got - want).abs() < 1e-15,

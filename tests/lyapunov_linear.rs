@@ -59,6 +59,8 @@ shape = "straight"
 L = 10.0
 
 [defaults]
+E = 1.2e4
+rho = 1.0e-6
 elements = 4
 dt_max = 1.0e-4
 

@@ -70,7 +70,8 @@ fn cantilever_scene_matches_the_elastica() {
         scene.set(&mut values, "h", height).unwrap();
         scene.set(&mut values, "L", length).unwrap();
         scene.set(&mut values, "elements", 40.0).unwrap();
-        let ei = values.std(Std::E) * values.std(Std::Width) * height.powi(3) / 12.0;
+        let width = values.get(scene.param_index("b").unwrap());
+        let ei = values.std(Std::E) * width * height.powi(3) / 12.0;
         let load = alpha * ei / (length * length);
         scene.set(&mut values, "P", load).unwrap();
         let sim = Simulation::new(scene.clone(), values).expect("static state");

@@ -12,6 +12,8 @@ name = "Good"
 shape = "straight"
 L = 10.0
 [defaults]
+E = 1.2e4
+rho = 1.0e-6
 elements = 10
 [[support]]
 name = "left"
@@ -87,14 +89,28 @@ fn bad_files() -> Vec<(&'static str, String, Vec<&'static str>)> {
             vec!["experiment.stop", "a number is allowed"],
         ),
         (
+            "no material",
+            edit("E = 1.2e4\nrho = 1.0e-6\n", ""),
+            vec!["defaults.E, defaults.rho", "add E and rho", "steel"],
+        ),
+        (
+            "no density",
+            edit("rho = 1.0e-6\n", ""),
+            vec!["defaults.rho", "add rho"],
+        ),
+        (
             "a station outside [0, 1]",
             edit("at = 1.0", "at = 1.5"),
             vec!["[[support]] #2 \"right\", key `at`", "[0, 1]"],
         ),
         (
-            "a support off the nodes of the default mesh",
-            edit("at = 1.0", "at = 0.35"),
-            vec!["defaults.elements", "support `right`", "multiples of 20"],
+            "fewer elements than segments between the supports",
+            edit(
+                "elements = 10\n",
+                "elements = 2\n[[support]]\nname = \"mid1\"\nat = 0.3\nfix = [\"u2\"]\n\
+                 [[support]]\nname = \"mid2\"\nat = 0.7\nfix = [\"u2\"]\n",
+            ),
+            vec!["defaults.elements", "[3, 100000]", "segments"],
         ),
         (
             "an undeclared parameter in a value slot",
@@ -239,8 +255,9 @@ fn the_amplitude_takes_the_unit_of_the_loads_it_scales() {
     }
 }
 
-/// `elements` declares the fewest and the most elements in [2, 100000] that put every support on
-/// a node, and both are accepted; the counts just outside are refused when set.
+/// `elements` declares the fewest elements that put every support on a node (one per segment
+/// between them, at least 2) and 100000, and both are accepted; the counts just outside are
+/// refused when set.
 #[test]
 fn elements_declares_the_counts_the_supports_allow() {
     let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -250,11 +267,11 @@ fn elements_declares_the_counts_the_supports_allow() {
             .replacen("elements = 10", "elements = 20", 1);
     let cases = [
         (Scene::parse(GOOD, "good.toml").unwrap(), (2, 100_000)),
-        (three, (3, 99_999)), // supports at 1/3 and 2/3: multiples of 3
-        (Scene::parse(&off, "off.toml").unwrap(), (20, 100_000)), // at 0.35 = 7/20
+        (three, (3, 100_000)), // supports at 1/3 and 2/3: three segments
+        (Scene::parse(&off, "off.toml").unwrap(), (2, 100_000)), // at 0.35: two segments
     ];
     for (scene, (lo, hi)) in cases {
-        assert_eq!(scene.element_range(), Some((lo, hi)), "{}", scene.name);
+        assert_eq!(scene.element_range(), (lo, hi), "{}", scene.name);
         let (_, p) = scene.param("elements").unwrap();
         assert_eq!(
             (p.range.min, p.range.max),

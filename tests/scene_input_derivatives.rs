@@ -33,6 +33,8 @@ name = "FreeRod"
 shape = "straight"
 L = 10.0
 [defaults]
+E = 1.2e4
+rho = 1.0e-6
 d = 0.0
 elements = 10
 dt_max = 1.0e-4
@@ -94,7 +96,17 @@ state = "reference"
 fn supports_follow_the_polynomial_of_their_derivatives() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/BeamOnBase.toml");
     let scene = Arc::new(Scene::load(path).unwrap());
-    let values = scene.defaults();
+    // The non-dimensional beam of the bounds below (the example itself is aluminium).
+    let beam = [
+        ("E", 1.2e4),
+        ("rho", 1e-6),
+        ("nu", 0.2),
+        ("d", 5e-4),
+        ("L", 10.0),
+        ("b", 1.0),
+        ("h", 0.2),
+    ];
+    let values = scene.values_with(beam).unwrap();
     let mut sim = Simulation::new(scene.clone(), values).unwrap();
     let (a, h) = (20.0, 1e-3);
     let rod = sim.rod().clone();

@@ -24,6 +24,8 @@ shape = "straight"
 L = 10.0
 
 [defaults]
+E = 1.2e4
+rho = 1.0e-6
 elements = 40
 
 [[support]]

@@ -16,6 +16,10 @@ name = "Loaded"
 shape = "straight"
 L = 4.0
 
+[defaults]
+E = 210e9
+rho = 7850.0
+
 [[support]]
 name = "root"
 at = 0.0

@@ -75,7 +75,15 @@ fn shear_factor_enters_the_shear_deflection() {
         // Richardson extrapolation from 40 and 80 elements removes the O(l^2) mesh error.
         let tip = |n: f64| {
             let values = scene
-                .values_with([("h", 2.0), ("elements", n), ("P", load)])
+                .values_with([
+                    ("E", 1.2e4),
+                    ("nu", 0.2),
+                    ("b", 1.0),
+                    ("h", 2.0),
+                    ("L", 10.0),
+                    ("elements", n),
+                    ("P", load),
+                ])
                 .unwrap();
             -output(&Simulation::new(scene.clone(), values).unwrap(), "w_tip")
         };

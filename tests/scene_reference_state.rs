@@ -22,6 +22,8 @@ shape = "straight"
 L = 8.0
 
 [defaults]
+E = 1.2e4
+rho = 1.0e-6
 elements = 8
 
 [[parameter]]

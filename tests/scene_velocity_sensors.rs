@@ -21,6 +21,8 @@ name = "Spin"
 shape = "straight"
 L = 10.0
 [defaults]
+E = 1.2e4
+rho = 1.0e-6
 h = 0.1
 elements = 10
 dt_max = 1.0e-4

@@ -3,8 +3,8 @@ scenes/ and examples/:
 
 - every min and max a modelDescription.xml declares is accepted when set exactly (FMI 2.0 bounds
   are inclusive), and, set alone, initializes with every output finite: a declared bound is a
-  value the FMU works with (e.g. `elements` of ThreeSpan declares [3, 99999], the counts that
-  put its supports at 1/3 and 2/3 on nodes). The only exceptions are the bounds listed in
+  value the FMU works with (e.g. `elements` of ThreeSpan declares [3, 100000]: one element per
+  span at least). The only exceptions are the bounds listed in
   UNREPRESENTABLE, where double precision runs out; there initialization may instead be refused
   with fmi2Error and a message;
 - with an extreme in-range combination, initialization either succeeds with every output finite,

@@ -45,7 +45,7 @@ def test_excitation_of_a_scene_outside_the_table(tmp_path: Path) -> None:
         md = fmpy.read_model_description(str(path))
         return FmuInfo.from_model_description(name, path, tmp_path, md)
 
-    assert excitation(info("ThreeSpan")) == {"F": 0.01, "Omega": 1200.0}
+    assert excitation(info("ThreeSpan")) == {"F": 1000.0, "Omega": 60.0}
     with pytest.raises(AssertionError, match="Cantilever: no harmonic excitation"):
         excitation(info("Cantilever"))
 

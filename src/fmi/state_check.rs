@@ -98,7 +98,12 @@ fn snapshot(s: &Snapshot, scene: &Scene, elements: usize) -> Result<(), String> 
     let sizes = [
         ("parameter values", s.values.len(), scene.params.len()),
         ("inputs", s.inputs.len(), scene.inputs.len()),
-        ("reactions", s.reactions.len(), scene.supports.len()),
+        // One per support, then one per spring (its force).
+        (
+            "reactions",
+            s.reactions.len(),
+            scene.supports.len() + scene.springs.len(),
+        ),
     ];
     for (what, got, want) in sizes {
         if got != want {

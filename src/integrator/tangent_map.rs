@@ -238,6 +238,7 @@ impl TangentMap {
         for (e, ke) in self.tangents.iter().enumerate() {
             jac.add_pair(e, ke, 0.5);
         }
+        rod.add_attached_stiffness(jac, 0.5);
         jac.constrain(rod.constrained());
         jac.factor_symmetric()?;
         self.solve(jac);

@@ -35,6 +35,48 @@ impl Bands {
         bands
     }
 
+    /// Zero bands for `dofs` dofs.
+    pub fn zeros(dofs: usize) -> Bands {
+        Bands {
+            diagonal: vec![0.0; dofs],
+            off: vec![0.0; dofs - 3],
+        }
+    }
+
+    /// Adds `value` to the diagonal entry of `dof` (a point mass, spring or dashpot).
+    pub fn add_diagonal(&mut self, dof: usize, value: f64) {
+        self.diagonal[dof] += value;
+    }
+
+    /// Adds `[[2 c, c], [c, 2 c]]` on dof kind `k` of element `e` (the consistent pattern).
+    pub fn add_pattern(&mut self, e: usize, k: usize, c: f64) {
+        self.diagonal[3 * e + k] += 2.0 * c;
+        self.diagonal[3 * e + 3 + k] += 2.0 * c;
+        self.off[3 * e + k] += c;
+    }
+
+    /// `self += other`.
+    pub fn add_bands(&mut self, other: &Bands) {
+        for (a, b) in self.diagonal.iter_mut().zip(&other.diagonal) {
+            *a += b;
+        }
+        for (a, b) in self.off.iter_mut().zip(&other.off) {
+            *a += b;
+        }
+    }
+
+    /// Row `dof` of `P x`: O(1).
+    pub fn row_times(&self, x: &[f64], dof: usize) -> f64 {
+        let mut r = self.diagonal[dof] * x[dof];
+        if dof >= 3 {
+            r += self.off[dof - 3] * x[dof - 3];
+        }
+        if dof + 3 < x.len() {
+            r += self.off[dof] * x[dof + 3];
+        }
+        r
+    }
+
     /// `out += scale * P x`.
     pub fn add_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
         // Three passes: the diagonal, the band above, the band below.

@@ -4,6 +4,7 @@
 //! (held over a communication step) times their nodal vectors. Steady loads with the same nodal
 //! vector are summed before they are spread, so a preload and a control force at one point act
 //! as one force, as a single load would.
+use super::moving_loads::MovingLoads;
 use super::rod::Rod;
 use std::cell::Cell;
 
@@ -17,6 +18,10 @@ pub enum LoadTime {
     },
     /// An input, held over a communication step.
     Input,
+    /// Moving load `index` of [`LoadSet::with_moving`] (its shape is not used).
+    Moving {
+        index: usize,
+    },
 }
 
 /// Where a load acts, along a fixed direction: `component` 0 (`e1`) or 1 (`e2`), `sign` +-1.
@@ -26,6 +31,16 @@ pub enum LoadShape {
     Point { s: f64, component: usize, sign: f64 },
     /// Uniform per unit length over the whole rod.
     Distributed { component: usize, sign: f64 },
+    /// Per unit length over the arc lengths `[from, to]`, with the intensity `start` at `from`
+    /// and `end` at `to`, linear in between.
+    Patch {
+        from: f64,
+        to: f64,
+        start: f64,
+        end: f64,
+        component: usize,
+        sign: f64,
+    },
 }
 
 impl LoadShape {
@@ -44,6 +59,33 @@ impl LoadShape {
                     let half = 0.5 * el.length;
                     out[3 * e + component] += sign * half;
                     out[3 * (e + 1) + component] += sign * half;
+                }
+            }
+            LoadShape::Patch {
+                from,
+                to,
+                start,
+                end,
+                component,
+                sign,
+            } => {
+                let intensity = |s: f64| start + (end - start) * (s - from) / (to - from);
+                for e in 0..rod.elements.len() {
+                    let (a, b) = (rod.node_s[e], rod.node_s[e + 1]);
+                    let (lo, hi) = (a.max(from), b.min(to));
+                    if hi <= lo {
+                        continue;
+                    }
+                    // Simpson's rule: exact for the quadratic q(s) N(s) over the overlap.
+                    let mut integrals = [0.0; 2];
+                    for (s, w) in [(lo, 1.0), (0.5 * (lo + hi), 4.0), (hi, 1.0)] {
+                        let nb = (s - a) / (b - a);
+                        let q = w * (hi - lo) / 6.0 * intensity(s);
+                        integrals[0] += q * (1.0 - nb);
+                        integrals[1] += q * nb;
+                    }
+                    out[3 * e + component] += sign * integrals[0];
+                    out[3 * (e + 1) + component] += sign * integrals[1];
                 }
             }
         }
@@ -77,6 +119,8 @@ pub struct LoadSet {
     /// twice (its equation and its energy ledger), and the cosine of a large argument is not
     /// cheap.
     last_cos: Cell<(f64, f64, f64)>,
+    /// Point forces travelling along the rod (none: no cost).
+    moving: MovingLoads,
 }
 
 impl LoadSet {
@@ -94,6 +138,9 @@ impl LoadSet {
         let mut harmonic = vec![(vec![0.0; n], 0.0); groups];
         let mut steady_entries: Vec<SteadyEntry> = Vec::new();
         for (i, (shape, time)) in loads.iter().enumerate() {
+            if let LoadTime::Moving { .. } = time {
+                continue;
+            }
             let q = shape.nodal_vector(rod);
             match *time {
                 LoadTime::Harmonic { group } => {
@@ -104,6 +151,7 @@ impl LoadSet {
                         sum.iter_mut().zip(&q).for_each(|(a, b)| *a += b);
                     }
                 }
+                LoadTime::Moving { .. } => {}
                 LoadTime::Constant | LoadTime::Input => {
                     match steady_entries.iter_mut().find(|e| e.shape == q) {
                         Some(entry) => entry.loads.push(i),
@@ -126,15 +174,24 @@ impl LoadSet {
             constant_part: vec![0.0; n],
             input_part: vec![0.0; n],
             last_cos: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
+            moving: MovingLoads::default(),
         }
+    }
+
+    /// The same loads with the travelling ones (the targets of [`LoadTime::Moving`]).
+    pub fn with_moving(mut self, moving: MovingLoads) -> LoadSet {
+        self.moving = moving;
+        self
     }
 
     /// Sets every load's magnitude (harmonic: its amplitude; loads of one group must agree)
     /// and rebuilds the steady vector. Allocates nothing.
     pub fn set_magnitudes(&mut self, magnitudes: &[f64]) {
         for (m, t) in magnitudes.iter().zip(&self.times) {
-            if let LoadTime::Harmonic { group } = t {
-                self.harmonic[*group].1 = *m;
+            match t {
+                LoadTime::Harmonic { group } => self.harmonic[*group].1 = *m,
+                LoadTime::Moving { index } => self.moving.loads[*index].magnitude = *m,
+                _ => {}
             }
         }
         self.steady.fill(0.0);
@@ -173,6 +230,9 @@ impl LoadSet {
 
     /// `out += scale * f_ext(t)`.
     pub fn add_to(&self, t: f64, out: &mut [f64], scale: f64) {
+        if !self.moving.is_empty() {
+            self.moving.add_to(t, out, scale);
+        }
         match self.harmonic.as_slice() {
             [] => {
                 for (o, s) in out.iter_mut().zip(&self.steady) {
@@ -217,8 +277,13 @@ impl LoadSet {
         let harmonic: f64 = (0..self.harmonic.len())
             .map(|g| self.excitation(g, t) * dot(&self.harmonic[g].0, true))
             .sum();
+        let moving = if self.moving.is_empty() {
+            0.0
+        } else {
+            self.moving.work(du, t)
+        };
         (
-            harmonic + dot(&self.constant_part, self.has_constant),
+            harmonic + moving + dot(&self.constant_part, self.has_constant),
             dot(&self.input_part, self.has_input),
         )
     }
@@ -231,6 +296,15 @@ impl LoadSet {
     /// The constant loads alone (the loads of the initial static state).
     pub fn constant_vector(&self) -> &[f64] {
         &self.constant_part
+    }
+
+    /// The number of loads (magnitudes of [`LoadSet::set_magnitudes`]).
+    pub fn len(&self) -> usize {
+        self.times.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.times.is_empty()
     }
 
     pub fn has_harmonic(&self) -> bool {

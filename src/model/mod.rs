@@ -1,11 +1,15 @@
 //! The rod model of `docs/model.md` (sections 1 to 5): reference geometry, section, the hybrid
 //! element and the assembled rod with its constraints, loads, mass and damping.
+pub mod attachments;
 pub mod bands;
 pub mod element;
 pub mod geometry;
 pub mod loads;
+pub mod mesh;
 pub mod modal;
 pub mod modal_subspace;
+pub mod moving_loads;
+pub mod rayleigh;
 pub mod rod;
 pub mod section;
 pub mod section_forces;

@@ -2,18 +2,24 @@
 //! matrices (internal force, tangent, mass, damping, loads). Global dof `3 i + k` is `u1`, `u2`,
 //! `w` (k = 0, 1, 2) of node `i`; element `e` joins nodes `e` and `e + 1`, so its six dofs are
 //! contiguous and the matrices are block tridiagonal.
+use super::attachments::Attachments;
 use super::bands::{Bands, Scaled};
 use super::element::{
     gauss_trig, shape_functions, Element, ElementInertia, ElementTangent, GaussTrig, Vector6,
     GAUSS_POINTS,
 };
 use super::geometry::ReferenceCurve;
+use super::rayleigh::StiffnessDamping;
 use super::section::Section;
 use crate::solver::BlockTridiagonal;
 use nalgebra::Vector2;
 
+#[path = "rod_attachments.rs"]
+mod rod_attachments;
 #[path = "rod_energy.rs"]
 mod rod_energy;
+#[path = "rod_points.rs"]
+mod rod_points;
 #[path = "rod_tangent.rs"]
 mod rod_tangent;
 
@@ -42,12 +48,19 @@ pub struct Rod {
     damping_bands: Bands,
     /// Arc length of each node.
     pub node_s: Vec<f64>,
+    /// Equal elements (points are found by division instead of a search).
+    uniform: bool,
     /// Constrained (fixed or prescribed) dofs, per global dof ([`Rod::fix`]).
     pub fixed: Vec<bool>,
     /// The constrained dofs in increasing order.
     constrained: Vec<usize>,
     /// Lumped (diagonal) instead of consistent mass and damping matrices.
     pub lumped: bool,
+    /// `beta K0` of Rayleigh damping, part of the damping matrix (none: no cost).
+    stiffness_damping: Option<StiffnessDamping>,
+    /// Point masses, springs, dashpots, foundations (in the bands), and the stiffness they add.
+    attachments: Attachments,
+    attached_stiffness: Option<Bands>,
 }
 
 impl Rod {
@@ -58,13 +71,40 @@ impl Rod {
         let node_s: Vec<f64> = (0..=n)
             .map(|i| curve.length() * i as f64 / n as f64)
             .collect();
+        Rod::build(curve, section, damping, node_s, vec![length; n], true)
+    }
+
+    /// Elements between the nodes at `fractions` of the arc length (increasing, from 0 to 1);
+    /// no dof constrained.
+    pub fn with_nodes(
+        curve: ReferenceCurve,
+        section: Section,
+        damping: f64,
+        fractions: &[f64],
+    ) -> Rod {
+        assert!(fractions.len() >= 2, "a rod needs at least one element");
+        let total = curve.length();
+        let node_s: Vec<f64> = fractions.iter().map(|f| total * f).collect();
+        let lengths = node_s.windows(2).map(|w| w[1] - w[0]).collect();
+        Rod::build(curve, section, damping, node_s, lengths, false)
+    }
+
+    fn build(
+        curve: ReferenceCurve,
+        section: Section,
+        damping: f64,
+        node_s: Vec<f64>,
+        lengths: Vec<f64>,
+        uniform: bool,
+    ) -> Rod {
+        let n = lengths.len();
         let elements = (0..n)
             .map(|e| {
                 let alpha = GAUSS_POINTS.map(|xi| {
                     let (_, nb) = shape_functions(xi);
-                    curve.tangent_angle(node_s[e] + nb * length)
+                    curve.tangent_angle(node_s[e] + nb * lengths[e])
                 });
-                Element::new(length, alpha)
+                Element::new(lengths[e], alpha)
             })
             .collect();
         let mut rod = Rod {
@@ -72,13 +112,19 @@ impl Rod {
             section,
             damping,
             elements,
-            inertia: vec![ElementInertia::new(&section, damping, length); n],
+            inertia: (lengths.iter())
+                .map(|&l| ElementInertia::new(&section, damping, l))
+                .collect(),
             mass_bands: Bands::default(),
             damping_bands: Bands::default(),
             node_s,
+            uniform,
             fixed: vec![false; 3 * (n + 1)],
             constrained: Vec::new(),
             lumped: false,
+            stiffness_damping: None,
+            attachments: Attachments::default(),
+            attached_stiffness: None,
         };
         rod.update_bands();
         rod
@@ -94,6 +140,7 @@ impl Rod {
         };
         self.mass_bands = coefficients(false);
         self.damping_bands = coefficients(true);
+        (self.attachments).add_to_bands(&mut self.mass_bands, &mut self.damping_bands);
     }
 
     /// The same rod with lumped (diagonal, row-sum) mass and damping matrices instead of the
@@ -162,6 +209,11 @@ impl Rod {
                 *r += f[offset + k];
             }
         }
+        if let Some(k) = &self.attached_stiffness {
+            for (j, r) in rows.iter_mut().enumerate() {
+                *r += k.row_times(u, 3 * i + j);
+            }
+        }
         rows
     }
 
@@ -170,6 +222,7 @@ impl Rod {
         assemble(f, &self.elements, u, |_, el, ue, trig| {
             el.internal_force_with(&self.section, ue, trig)
         });
+        self.add_attached_force(u, f);
     }
 
     /// `f =` the energy-momentum discrete gradient between `ua` and `ub` (overwrites).
@@ -179,6 +232,7 @@ impl Rod {
             let (a, b) = (Self::element_dofs(ua, e), Self::element_dofs(ub, e));
             add_element_vector(f, e, &el.discrete_gradient(&self.section, &a, &b));
         }
+        self.add_attached_midpoint_force(ua, ub, f);
     }
 
     /// `f =` the energy-momentum discrete gradient between `ua` and `ub` (overwrites), and
@@ -201,6 +255,8 @@ impl Rod {
             add_element_vector(f, e, &fe);
             jac.add_pair(e, &ke, scale);
         }
+        self.add_attached_midpoint_force(ua, ub, f);
+        self.attachments.add_stiffness(jac, scale);
     }
 
     /// `jac += scale * M`.
@@ -208,12 +264,17 @@ impl Rod {
         for (e, m) in self.inertia.iter().enumerate() {
             jac.add_pair_pattern(e, &m.coefficients(false), scale, self.lumped);
         }
+        self.attachments.add_mass(jac, scale);
     }
 
     /// `jac += scale * C` (damping).
     pub fn add_damping(&self, jac: &mut BlockTridiagonal, scale: f64) {
         for (e, m) in self.inertia.iter().enumerate() {
             jac.add_pair_pattern(e, &m.coefficients(true), scale, self.lumped);
+        }
+        self.attachments.add_damping(jac, scale);
+        if let Some(k0) = &self.stiffness_damping {
+            k0.add_to(self, jac, scale);
         }
     }
 
@@ -225,6 +286,9 @@ impl Rod {
     /// `out += scale * C x` (damping).
     pub fn add_damping_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
         self.damping_bands.add_times(x, out, scale);
+        if let Some(k0) = &self.stiffness_damping {
+            k0.add_times(x, out, scale);
+        }
     }
 
     /// `out += mass_scale * M x + damping_scale * C y` in one pass.
@@ -236,6 +300,9 @@ impl Rod {
     ) {
         self.mass_bands.add_times(x, out, mass_scale);
         self.damping_bands.add_times(y, out, damping_scale);
+        if let Some(k0) = &self.stiffness_damping {
+            k0.add_times(y, out, damping_scale);
+        }
     }
 
     /// `out += M (a x + b y) + c C x + z`: the linear part of the midpoint rule's residual and
@@ -250,46 +317,10 @@ impl Rod {
     ) {
         self.mass_bands
             .add_bracket_times(&self.damping_bands, bracket, c, z, out);
-    }
-
-    /// The point at arc length `s` (clamped to the rod).
-    pub fn point_at(&self, s: f64) -> PointOnRod {
-        let n = self.elements.len();
-        let total = self.curve.length();
-        let x = (s / total * n as f64).clamp(0.0, n as f64);
-        let element = (x.floor() as usize).min(n - 1);
-        let local = x - element as f64;
-        PointOnRod {
-            element,
-            weights: (1.0 - local, local),
+        if let Some(k0) = &self.stiffness_damping {
+            let ((_, x), _) = bracket;
+            k0.add_times(x, out, c);
         }
-    }
-
-    /// The point `s = S/2`, where the crown load acts and the outputs are taken.
-    pub fn midspan(&self) -> PointOnRod {
-        self.point_at(0.5 * self.curve.length())
-    }
-
-    /// Dof `k` of a nodal vector interpolated at `p`.
-    pub fn interpolate(&self, x: &[f64], p: PointOnRod, k: usize) -> f64 {
-        let (na, nb) = p.weights;
-        na * x[3 * p.element + k] + nb * x[3 * p.element + 3 + k]
-    }
-
-    /// Nodal forces of a unit uniform load per unit length along `-e2` (fixed direction).
-    pub fn add_uniform_transverse_load(&self, out: &mut [f64], magnitude: f64) {
-        for (e, el) in self.elements.iter().enumerate() {
-            let half = 0.5 * magnitude * el.length;
-            out[3 * e + U2] -= half;
-            out[3 * (e + 1) + U2] -= half;
-        }
-    }
-
-    /// Nodal forces of a point force of `magnitude` along `-e2` at `p`.
-    pub fn add_point_transverse_load(&self, out: &mut [f64], p: PointOnRod, magnitude: f64) {
-        let (na, nb) = p.weights;
-        out[3 * p.element + U2] -= na * magnitude;
-        out[3 * (p.element + 1) + U2] -= nb * magnitude;
     }
 
     /// Current position of node `i`.

@@ -6,10 +6,16 @@ use super::{Rod, ROTATION, U1, U2};
 use nalgebra::Vector2;
 
 impl Rod {
+    /// The elements' strain energy and the energy stored in the springs and foundations.
     pub fn strain_energy(&self, u: &[f64]) -> f64 {
-        (self.elements.iter().enumerate())
+        let attached = self
+            .attached_stiffness
+            .as_ref()
+            .map_or(0.0, |k| 0.5 * k.form(u));
+        let elements: f64 = (self.elements.iter().enumerate())
             .map(|(e, el)| el.strain_energy(&self.section, &Self::element_dofs(u, e)))
-            .sum()
+            .sum();
+        elements + attached
     }
 
     /// `v^T M v / 2`.
@@ -19,7 +25,8 @@ impl Rod {
 
     /// `v^T C v` (power dissipated by the damping).
     pub fn dissipation_rate(&self, v: &[f64]) -> f64 {
-        self.damping_bands.form(v)
+        let rayleigh = self.stiffness_damping.as_ref().map_or(0.0, |k0| k0.form(v));
+        self.damping_bands.form(v) + rayleigh
     }
 
     /// Linear momentum `sum M v` over the translations.

@@ -22,6 +22,8 @@ impl Rod {
             jac.add_pair(e, &ke, scale);
             fe
         });
+        self.add_attached_force(u, f);
+        self.add_attached_stiffness(jac, scale);
     }
 
     /// [`Rod::internal_force_and_tangent`] that also keeps each element's tangent in `kept`
@@ -40,6 +42,8 @@ impl Rod {
             jac.add_pair(e, &kept[e], scale);
             fe
         });
+        self.add_attached_force(u, f);
+        self.add_attached_stiffness(jac, scale);
     }
 
     /// `f = f_int(u)` (overwrites) and each element's tangent into `tangents` (one per
@@ -55,6 +59,7 @@ impl Rod {
             el.force_and_tangent_into(&self.section, ue, trig, &mut fe, &mut tangents[e]);
             fe
         });
+        self.add_attached_force(u, f);
     }
 
     /// `out = scale * (K1 - K0) y` (overwrites), `K1`, `K0` assembled from the element

@@ -61,6 +61,16 @@ fn scene_summary(scene: &Scene) -> String {
         let place = match l.kind {
             LoadKind::Point { at } => format!("point load at {at}"),
             LoadKind::Distributed => "distributed load (per unit length)".to_string(),
+            LoadKind::Patch { from, to, .. } => {
+                format!("distributed load (per unit length) over [{from}, {to}]")
+            }
+            LoadKind::Moment { at } => format!("point moment at {at}"),
+            LoadKind::Gravity => "gravity (acceleration of the rod's mass)".to_string(),
+            LoadKind::Moving { speed, enter } => format!(
+                "point load moving at {} m/s from t = {} s",
+                slot_text(scene, &speed),
+                slot_text(scene, &enter)
+            ),
         };
         let dir = format!(
             "{}e{}",
@@ -82,6 +92,9 @@ fn scene_summary(scene: &Scene) -> String {
             "<li>Load <code>{}</code>: {place} along {dir}, {time}.</li>",
             html(&l.name)
         );
+    }
+    for line in attachment_lines(scene) {
+        let _ = writeln!(h, "<li>{line}</li>");
     }
     let initial = match (scene.initial.state, scene.initial.branch) {
         (InitialState::Reference, _) => "the undeformed rod at rest".to_string(),
@@ -238,4 +251,53 @@ print(result["time"][-1], result[{shown}][-1])"#,
     }
     let _ = writeln!(h, "</body>\n</html>");
     h
+}
+
+/// The section, the point masses, springs, foundations and Rayleigh damping, one line each.
+fn attachment_lines(scene: &Scene) -> Vec<String> {
+    let mut lines = Vec::new();
+    let dims: Vec<String> = (scene.section.dims.iter())
+        .map(|&i| format!("<code>{}</code>", html(&scene.params[i].name)))
+        .collect();
+    lines.push(format!(
+        "Section: {:?}, dimensions {}.",
+        scene.section.shape,
+        dims.join(", ")
+    ));
+    for m in &scene.masses {
+        lines.push(format!(
+            "Point mass <code>{}</code> at {}: m = {} kg, J = {} kg m2.",
+            html(&m.name),
+            m.at,
+            m.m,
+            m.j
+        ));
+    }
+    for s in &scene.springs {
+        lines.push(format!(
+            "Spring <code>{}</code> at {} on {}: k = {}, c = {} (to ground).",
+            html(&s.name),
+            s.at,
+            DOF_NAMES[s.dof],
+            s.k,
+            s.c
+        ));
+    }
+    for f in &scene.foundations {
+        lines.push(format!(
+            "Foundation <code>{}</code> over [{}, {}]: k = {} N/m2, c = {} N s/m2 on u2.",
+            html(&f.name),
+            f.from,
+            f.to,
+            f.k,
+            f.c
+        ));
+    }
+    if let Some(r) = scene.rayleigh {
+        lines.push(format!(
+            "Rayleigh damping: alpha = {:e} /s, beta = {:e} s (on the initial tangent).",
+            r.alpha, r.beta
+        ));
+    }
+    lines
 }

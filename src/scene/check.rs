@@ -6,9 +6,9 @@
 use super::checker::{entry, Checker};
 use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::{claims, items};
+use super::{attached, claims, damping, items, sections};
 use super::{
-    Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor,
+    Branch, DefaultExperiment, Geometry, Initial, InitialState, Quantity, Scene, SceneError, Sensor,
 };
 
 /// The scene in `text`, checked completely; `file` names it in every message.
@@ -43,6 +43,23 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         let i = params.iter().position(|p| p.name == "H").expect("arc");
         params[i].start = h;
     }
+    require_material(&c, &raw)?;
+    let number_in_defaults = |name: &str| match raw.defaults.get(name) {
+        None => Ok(None),
+        Some(toml::Value::Float(x)) => Ok(Some(*x)),
+        Some(toml::Value::Integer(i)) => Ok(Some(*i as f64)),
+        Some(other) => c.err(
+            format!("defaults.{name}"),
+            format!("{other} is not a number"),
+        ),
+    };
+    let (section, dimensions, section_shear) = sections::section(
+        &c,
+        raw.section.as_ref(),
+        &number_in_defaults,
+        params::SECTION_AT,
+    )?;
+    params.splice(params::SECTION_AT..params::SECTION_AT, dimensions);
     apply_defaults(&c, &raw, &mut params, harmonic)?;
     for (i, p) in raw.parameter.iter().enumerate() {
         let param = scene_parameter(&c, i, p, &params)?;
@@ -51,6 +68,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
 
     let mut inputs = Vec::new();
     let supports = items::supports(&c, &raw.support, &params, &mut inputs)?;
+    let springs = attached::springs(&c, &raw.spring, &supports)?;
     let loads = items::loads(&c, &raw.load, &mut params, &mut inputs)?;
     items::label_amplitude(&loads, &mut params);
     let sensors = raw
@@ -61,8 +79,23 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         .collect::<Result<Vec<_>, _>>()?;
     let (shape_points, shape_fields) = super::readouts::shape(&c, raw.shape.as_ref())?;
     let initial = initial(&c, &raw, &sensors, &params)?;
-    let model = model(&c, &raw)?;
     let modes = super::readouts::modes(&c, raw.modes.as_ref())?;
+    let mut model = model(&c, &raw)?;
+    if let Some(factor) = section_shear {
+        if raw.model.as_ref().is_some_and(|m| m.shear_factor.is_some()) {
+            return c.err(
+                "section.shear_factor",
+                "also given in [model]: give the shear factor once",
+            );
+        }
+        model.shear_factor = factor;
+    }
+    if section.shape == sections::SectionShape::General && model.shear_factor != 1.0 {
+        return c.err(
+            "model.shear_factor",
+            "a general section gives its shear area As directly: no shear_factor",
+        );
+    }
 
     let mut scene = Scene {
         name,
@@ -79,8 +112,25 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         modes,
         initial,
         model,
+        section,
+        rayleigh: damping::rayleigh(&c, raw.damping.as_ref())?,
+        masses: attached::masses(&c, &raw.mass)?,
+        springs,
+        foundations: attached::foundations(&c, &raw.foundation)?,
         source: text.to_string(),
     };
+    if let Err(e) = scene.section.check(&scene.defaults()) {
+        return c.err(format!("section.{}", e.name), e.message);
+    }
+    if scene.section.depth(&scene.defaults()).is_none() {
+        if let Some(key) = fiber_stress_reader(&scene) {
+            return c.err(
+                key,
+                "reads a fiber stress, which needs the section's depth: add `depth` to the \
+                 general [section]",
+            );
+        }
+    }
     if let Err((key, message)) = claims::check_blocks(&scene) {
         return c.err(key, message);
     }
@@ -92,19 +142,19 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
             return c.err(
                 "[[support]]",
                 format!(
-                    "the supports leave the rod free to {free}: it has no static equilibrium. \
-                     Hold more degrees of freedom, or start from [initial] state = \"reference\""
+                    "the supports (with the springs and foundations) leave the rod free to \
+                     {free}: it has no static equilibrium. Hold more degrees of freedom, or start \
+                     from [initial] state = \"reference\""
                 ),
             );
         }
     }
+    // The declared range of `elements`: from the fewest that put every station on a node.
+    let (lo, hi) = scene.element_range();
+    scene.params[super::Std::Elements as usize].range = Range::between(lo as f64, hi as f64);
     if let Err(e) = scene.check_mesh(scene.defaults().elements()) {
         return c.err("defaults.elements", e.message);
     }
-    // The declared range of `elements`: from the fewest to the most elements that put every
-    // support on a node (the default does, so there are some).
-    let (lo, hi) = scene.element_range().expect("the default count works");
-    scene.params[super::Std::Elements as usize].range = Range::between(lo as f64, hi as f64);
     Ok(scene)
 }
 
@@ -169,6 +219,27 @@ fn geometry(c: &Checker, raw: &SceneFile) -> Result<(Geometry, f64, Option<f64>)
     Ok((geometry, span, rise))
 }
 
+/// A scene names its material: no silent default for `E` and `rho` (a forgotten one would run
+/// with numbers no engineer chose).
+fn require_material(c: &Checker, raw: &SceneFile) -> Result<(), SceneError> {
+    let missing: Vec<&str> = ["E", "rho"]
+        .into_iter()
+        .filter(|k| !raw.defaults.contains_key(*k))
+        .collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    let keys: Vec<String> = missing.iter().map(|k| format!("defaults.{k}")).collect();
+    c.err(
+        keys.join(", "),
+        format!(
+            "missing: a scene gives its material in [defaults]: add {} (for example steel: \
+             E = 210e9 Pa, rho = 7850 kg/m3; aluminium: E = 70e9 Pa, rho = 2700 kg/m3)",
+            missing.join(" and ")
+        ),
+    )
+}
+
 fn apply_defaults(
     c: &Checker,
     raw: &SceneFile,
@@ -186,6 +257,13 @@ fn apply_defaults(
             );
         }
         let Some(p) = params.iter_mut().find(|p| &p.name == name) else {
+            if name == "b" || name == "h" {
+                return c.err(
+                    key,
+                    "b and h are the dimensions of a rectangle: give this scene's section \
+                     dimensions in [section]",
+                );
+            }
             debug_assert!(!harmonic);
             return c.err(
                 key,
@@ -213,7 +291,10 @@ fn scene_parameter(
 ) -> Result<Param, SceneError> {
     let key = |k: &str| entry("parameter", i, p.name.as_ref(), k);
     let name = c.identifier(p.name.as_ref(), &key("name"))?;
-    if params::is_standard_name(&name) || existing.iter().any(|q| q.name == name) {
+    if params::is_standard_name(&name)
+        || sections::is_dimension_name(&name)
+        || existing.iter().any(|q| q.name == name)
+    {
         return c.err(
             key("name"),
             format!("`{name}` is already a parameter of this scene"),
@@ -347,15 +428,22 @@ fn free_rigid_motion(scene: &Scene, span: f64, rise: Option<f64>) -> Option<&'st
     };
     // Rows: what each held dof sees of (translation e1, translation e2, rotation).
     let mut rows: Vec<[f64; 3]> = Vec::new();
+    // Supports, springs and foundations (on u2 at both ends) restrain.
+    let mut held: Vec<(f64, usize)> = Vec::new();
     for s in &scene.supports {
-        let x = curve.position(s.at * curve.length()) / span;
-        for (k, _) in s.fixed.iter().enumerate().filter(|(_, f)| **f) {
-            rows.push(match k {
-                0 => [1.0, 0.0, -x[1]],
-                1 => [0.0, 1.0, x[0]],
-                _ => [0.0, 0.0, 1.0],
-            });
-        }
+        held.extend((0..3).filter(|&k| s.fixed[k]).map(|k| (s.at, k)));
+    }
+    let springs = scene.springs.iter().filter(|s| s.k > 0.0);
+    held.extend(springs.map(|s| (s.at, s.dof)));
+    let foundations = scene.foundations.iter().filter(|f| f.k > 0.0);
+    held.extend(foundations.flat_map(|f| [(f.from, 1), (f.to, 1)]));
+    for (at, k) in held {
+        let x = curve.position(at * curve.length()) / span;
+        rows.push(match k {
+            0 => [1.0, 0.0, -x[1]],
+            1 => [0.0, 1.0, x[0]],
+            _ => [0.0, 0.0, 1.0],
+        });
     }
     let m = nalgebra::DMatrix::from_fn(rows.len(), 3, |i, j| rows[i][j]);
     let rank = if rows.is_empty() { 0 } else { m.rank(1e-9) };
@@ -374,4 +462,17 @@ fn free_rigid_motion(scene: &Scene, span: f64, rise: Option<f64>) -> Option<&'st
     } else {
         "rotate"
     })
+}
+
+/// The key of the first sensor or shape field that reads a fiber stress, if any.
+fn fiber_stress_reader(scene: &Scene) -> Option<String> {
+    let fiber = |q: Quantity| matches!(q, Quantity::SigmaTop | Quantity::SigmaBottom);
+    if let Some(i) = scene.sensors.iter().position(|s| fiber(s.quantity)) {
+        return Some(entry("sensor", i, Some(&scene.sensors[i].name), "quantity"));
+    }
+    scene
+        .shape_fields
+        .iter()
+        .any(|&q| fiber(q))
+        .then(|| "shape.fields".to_string())
 }

@@ -26,6 +26,14 @@ pub struct SceneFile {
     pub initial: Option<InitialFile>,
     pub model: Option<ModelFile>,
     pub modes: Option<ModesFile>,
+    pub section: Option<SectionFile>,
+    pub damping: Option<DampingFile>,
+    #[serde(default)]
+    pub mass: Vec<MassFile>,
+    #[serde(default)]
+    pub spring: Vec<SpringFile>,
+    #[serde(default)]
+    pub foundation: Vec<FoundationFile>,
 }
 
 /// Natural frequencies of the initial state.
@@ -33,6 +41,83 @@ pub struct SceneFile {
 #[serde(deny_unknown_fields)]
 pub struct ModesFile {
     pub count: Option<i64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct MassFile {
+    pub name: Option<String>,
+    pub at: Option<f64>,
+    pub m: Option<f64>,
+    #[serde(rename = "J")]
+    pub rotary: Option<f64>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct SpringFile {
+    pub name: Option<String>,
+    pub at: Option<f64>,
+    pub dof: Option<String>,
+    pub k: Option<f64>,
+    pub c: Option<f64>,
+    pub motion: Option<String>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct FoundationFile {
+    pub name: Option<String>,
+    pub k: Option<f64>,
+    pub c: Option<f64>,
+    pub from: Option<f64>,
+    pub to: Option<f64>,
+}
+
+/// Rayleigh damping: coefficients, or a ratio at two frequencies.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct DampingFile {
+    pub alpha: Option<f64>,
+    pub beta: Option<f64>,
+    pub ratio: Option<f64>,
+    pub frequencies: Option<Vec<f64>>,
+}
+
+/// The cross section: a shape and its dimensions.
+#[derive(Deserialize, Debug, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SectionFile {
+    pub shape: Option<String>,
+    pub b: Option<f64>,
+    pub h: Option<f64>,
+    #[serde(rename = "D")]
+    pub diameter: Option<f64>,
+    pub t: Option<f64>,
+    #[serde(rename = "A")]
+    pub area: Option<f64>,
+    #[serde(rename = "I")]
+    pub inertia: Option<f64>,
+    #[serde(rename = "As")]
+    pub shear_area: Option<f64>,
+    pub depth: Option<f64>,
+    pub shear_factor: Option<f64>,
+}
+
+impl SectionFile {
+    /// Every dimension key with its value, if given.
+    pub fn dimensions(&self) -> [(&'static str, Option<f64>); 8] {
+        [
+            ("b", self.b),
+            ("h", self.h),
+            ("D", self.diameter),
+            ("t", self.t),
+            ("A", self.area),
+            ("I", self.inertia),
+            ("As", self.shear_area),
+            ("depth", self.depth),
+        ]
+    }
 }
 
 /// Departures from the specified model, for studies.
@@ -92,6 +177,12 @@ pub struct LoadFile {
     pub name: Option<String>,
     pub kind: Option<String>,
     pub at: Option<f64>,
+    pub from: Option<f64>,
+    pub to: Option<f64>,
+    pub value_end: Option<toml::Value>,
+    /// A moving load's speed (m/s) and entry time (s): value slots.
+    pub speed: Option<toml::Value>,
+    pub enter: Option<toml::Value>,
     pub direction: Option<String>,
     pub value: Option<toml::Value>,
     pub time: Option<String>,

@@ -2,6 +2,7 @@
 //! inputs) and `[[sensor]]`.
 use super::checker::{entry, Checker};
 use super::file::{LoadFile, SensorFile, SupportFile};
+use super::load_kinds;
 use super::params::{Param, Variability};
 use super::{
     Direction, Input, InputKind, Load, LoadKind, Quantity, SceneError, Sensor, Slot, Support,
@@ -117,40 +118,36 @@ pub(super) fn loads(
     for (i, l) in raw.iter().enumerate() {
         let key = |k: &str| entry("load", i, l.name.as_ref(), k);
         let name = c.identifier(l.name.as_ref(), &key("name"))?;
-        let kind_name = c.required(
-            l.kind.as_deref(),
-            &key("kind"),
-            "\"point\" or \"distributed\"",
-        )?;
-        let kind = match c.one_of(kind_name, &["point", "distributed"], &key("kind"))? {
-            0 => LoadKind::Point {
-                at: c.station(l.at, &key("at"))?,
-            },
-            _ if l.at.is_some() => {
-                return c.err(
-                    key("at"),
-                    "a distributed load acts on the whole rod: no `at`",
-                )
-            }
-            _ => LoadKind::Distributed,
-        };
-        let unit = if matches!(kind, LoadKind::Point { .. }) {
-            "N"
-        } else {
-            "N/m"
-        };
-        let dir = c.required(
-            l.direction.as_deref(),
-            &key("direction"),
-            "\"e1\", \"e2\", \"-e1\" or \"-e2\"",
-        )?;
-        let d = c.one_of(dir, &["e1", "e2", "-e1", "-e2"], &key("direction"))?;
-        let direction = Direction {
-            component: d % 2,
-            sign: if d < 2 { 1.0 } else { -1.0 },
-        };
+        let placed = load_kinds::place(c, l, params, &key)?;
+        let (kind, direction, unit) = (placed.kind, placed.direction, placed.unit);
         let time_name = l.time.as_deref().unwrap_or("constant");
         let time_kind = c.one_of(time_name, &["constant", "harmonic", "input"], &key("time"))?;
+        if kind == LoadKind::Gravity && time_kind != 0 {
+            return c.err(
+                key("time"),
+                "gravity is constant (it is part of the static initial state)",
+            );
+        }
+        if matches!(kind, LoadKind::Moving { .. }) && time_kind != 0 {
+            return c.err(
+                key("time"),
+                "a moving load has a constant value (it moves instead)",
+            );
+        }
+        if time_kind == 2
+            && matches!(
+                kind,
+                LoadKind::Patch {
+                    value_end: Some(_),
+                    ..
+                }
+            )
+        {
+            return c.err(
+                key("value_end"),
+                "an input load's magnitude is the input: it has no end value",
+            );
+        }
         if time_kind != 2 && l.start.is_some() {
             return c.err(
                 key("start"),
@@ -159,11 +156,15 @@ pub(super) fn loads(
         }
         let (value, time) = match time_kind {
             0 => {
-                let v = c.required(
-                    l.value.as_ref(),
-                    &key("value"),
-                    "a number, a parameter name, or -name",
-                )?;
+                let standard = toml::Value::Float(STANDARD_GRAVITY);
+                let v = match (&l.value, kind) {
+                    (None, LoadKind::Gravity) => &standard,
+                    (v, _) => c.required(
+                        v.as_ref(),
+                        &key("value"),
+                        "a number, a parameter name, or -name",
+                    )?,
+                };
                 (c.slot(v, params, &key("value"))?, TimeLaw::Constant)
             }
             1 => {
@@ -194,12 +195,8 @@ pub(super) fn loads(
                     unit: Some(unit.to_string()),
                     description: if l.description.trim().is_empty() {
                         format!(
-                            "{} load along {dir}{}, held over each communication step",
-                            if unit == "N" { "Point" } else { "Distributed" },
-                            match kind {
-                                LoadKind::Point { at } => format!(" at {at} of the length"),
-                                LoadKind::Distributed => String::new(),
-                            }
+                            "{}, held over each communication step",
+                            describe(kind, direction)
                         )
                     } else {
                         l.description.trim().to_string()
@@ -222,6 +219,30 @@ pub(super) fn loads(
         }
     }
     Ok(out)
+}
+
+/// Standard gravity (m/s2), the default value of a gravity load.
+pub const STANDARD_GRAVITY: f64 = 9.81;
+
+/// A load's kind, place and direction in words.
+pub fn describe(kind: LoadKind, direction: Direction) -> String {
+    let along = format!(
+        "along {}e{}",
+        if direction.sign < 0.0 { "-" } else { "" },
+        direction.component + 1
+    );
+    match kind {
+        LoadKind::Point { at } => format!("Point load {along} at {at} of the length"),
+        LoadKind::Distributed => format!("Distributed load {along}"),
+        LoadKind::Patch { from, to, .. } => {
+            format!("Distributed load {along} over [{from}, {to}] of the length")
+        }
+        LoadKind::Moment { at } => {
+            format!("Point moment about e3 (counter-clockwise) at {at} of the length")
+        }
+        LoadKind::Gravity => format!("Gravity {along}"),
+        LoadKind::Moving { .. } => format!("Moving load {along}"),
+    }
 }
 
 pub(super) fn sensor(c: &Checker, i: usize, s: &SensorFile) -> Result<Sensor, SceneError> {
@@ -256,8 +277,10 @@ pub(super) fn label_amplitude(loads: &[Load], params: &mut [Param]) {
         .iter()
         .filter(|l| l.time == TimeLaw::Harmonic && l.value == amplitude)
         .map(|l| match l.kind {
-            LoadKind::Distributed => "N/m",
-            LoadKind::Point { .. } => "N",
+            LoadKind::Distributed | LoadKind::Patch { .. } => "N/m",
+            LoadKind::Point { .. } | LoadKind::Moving { .. } => "N",
+            LoadKind::Moment { .. } => "N.m",
+            LoadKind::Gravity => "m/s2",
         })
         .collect();
     if let Some(&first) = units.first() {

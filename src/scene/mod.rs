@@ -5,14 +5,18 @@
 //! or the reference state). [`Scene::parse`] checks a file completely, with messages that name
 //! the file, the key and what is allowed; the packager, the core and the FMU all read scenes
 //! through it.
+pub mod attached;
 mod check;
 mod checker;
 mod claims;
+pub mod damping;
 mod file;
 mod items;
+mod load_kinds;
 pub mod params;
 pub mod quantity;
 pub mod readouts;
+pub mod sections;
 mod syntax;
 pub mod variables;
 
@@ -95,11 +99,31 @@ pub enum LoadKind {
     Point {
         at: f64,
     },
-    /// Per unit length over the whole rod.
+    /// Per unit length over the whole rod, uniform.
     Distributed,
+    /// Per unit length over the stations `[from, to]`, varying linearly from the load's value
+    /// to `value_end` (`None`: uniform).
+    Patch {
+        from: f64,
+        to: f64,
+        value_end: Option<Slot>,
+    },
+    /// A point couple about e3 (counter-clockwise positive); its direction is the rotation dof.
+    Moment {
+        at: f64,
+    },
+    /// An acceleration (the load's value) on the rod's mass: `value rho A` per unit length.
+    Gravity,
+    /// A point force entering at station 0 at the time `enter` and travelling along the arc
+    /// length at `speed` (both slots of fixed parameters or numbers).
+    Moving {
+        speed: Slot,
+        enter: Slot,
+    },
 }
 
-/// A fixed direction: `component` 0 (`e1`) or 1 (`e2`), `sign` +1 or -1.
+/// A fixed direction: `component` 0 (`e1`) or 1 (`e2`), or 2 (the rotation, for moments),
+/// `sign` +1 or -1.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Direction {
     pub component: usize,
@@ -216,6 +240,13 @@ pub struct Scene {
     pub modes: usize,
     pub initial: Initial,
     pub model: ModelOptions,
+    /// The cross section: its shape and the parameters of its dimensions.
+    pub section: sections::CrossSection,
+    /// Rayleigh damping (`[damping]`), added to `d`.
+    pub rayleigh: Option<damping::Rayleigh>,
+    pub masses: Vec<attached::PointMass>,
+    pub springs: Vec<attached::Spring>,
+    pub foundations: Vec<attached::Foundation>,
     /// The file's text, exactly as read (what an FMU carries in `resources/`).
     pub source: String,
 }
@@ -286,7 +317,8 @@ impl Scene {
         Ok(())
     }
 
-    /// Every range, the conditions between parameters, and that the supports fall on nodes.
+    /// Every range, the conditions between parameters (an arc's rise, a tube's wall, a moving
+    /// load's speed), and that `elements` puts every station on a node.
     pub fn check(&self, values: &ParamValues) -> Result<(), ParamError> {
         for (param, &value) in self.params.iter().zip(&values.0) {
             param.check(value)?;
@@ -303,60 +335,64 @@ impl Scene {
                 ));
             }
         }
+        self.section.check(values)?;
+        for l in &self.loads {
+            if let LoadKind::Moving {
+                speed: Slot::Param { index, sign },
+                ..
+            } = l.kind
+            {
+                let v = sign * values.get(index);
+                if v <= 0.0 {
+                    return Err(params::refuse(
+                        &self.params[index].name,
+                        format!("the speed of moving load `{}` is {v}: must be > 0", l.name),
+                    ));
+                }
+            }
+        }
         self.check_mesh(values.elements())
     }
 
-    /// Whether every support falls on a node of a mesh of `elements` equal elements; if not,
-    /// the error says which counts work.
+    /// The stations that are nodes of every mesh (supports, masses, springs, the ends of the
+    /// foundations, and both ends of the rod), sorted: the
+    /// boundaries of the segments the elements are spread over.
+    pub fn mesh_stations(&self) -> Vec<f64> {
+        let supports = self.supports.iter().map(|s| s.at);
+        let masses = self.masses.iter().map(|m| m.at);
+        let springs = self.springs.iter().map(|s| s.at);
+        let foundations = self.foundations.iter().flat_map(|f| [f.from, f.to]);
+        crate::model::mesh::segment_boundaries(
+            supports.chain(masses).chain(springs).chain(foundations),
+        )
+    }
+
+    /// Whether `elements` can put every station on a node (one element per segment at least);
+    /// if not, the error says which counts work.
     pub fn check_mesh(&self, elements: usize) -> Result<(), ParamError> {
-        let off = self.supports.iter().find(|s| !on_node(s.at, elements));
-        let Some(support) = off else { return Ok(()) };
-        let works = self.node_counts();
-        let hint = match works {
-            Some(base) => format!(
-                "element counts that put every support on a node: multiples of {base} \
-                 ({base}, {}, {}, ...)",
-                2 * base,
-                3 * base
-            ),
-            None => format!("no element count up to {MAX_ELEMENTS} puts every support on a node"),
-        };
+        let (lo, hi) = self.element_range();
+        if (lo..=hi).contains(&elements) {
+            return Ok(());
+        }
+        let stations = self.mesh_stations();
         Err(params::refuse(
             params::ELEMENTS,
             format!(
-                "{elements} elements put support `{}` (at {} of the length) between two nodes; {hint}",
-                support.name, support.at
+                "{elements} is out of range: must be in [{lo}, {hi}] (the {} segments between \
+                 the ends and the supports need one element each at least)",
+                stations.len() - 1
             ),
         ))
     }
 
-    /// The smallest element count that puts every support on a node (all multiples work).
-    pub fn node_counts(&self) -> Option<usize> {
-        (1..=MAX_ELEMENTS).find(|&n| self.supports_on_nodes(n))
-    }
-
-    fn supports_on_nodes(&self, elements: usize) -> bool {
-        self.supports.iter().all(|s| on_node(s.at, elements))
-    }
-
-    /// The smallest and the largest element count in [`MIN_ELEMENTS`, `MAX_ELEMENTS`] that put
-    /// every support on a node: the declared range of `elements`, whose bounds are accepted.
-    /// `None` if no count does.
-    pub fn element_range(&self) -> Option<(usize, usize)> {
-        let lo = (MIN_ELEMENTS..=MAX_ELEMENTS).find(|&n| self.supports_on_nodes(n))?;
-        let hi = (lo..=MAX_ELEMENTS)
-            .rev()
-            .find(|&n| self.supports_on_nodes(n))?;
-        Some((lo, hi))
+    /// The fewest and the most elements: one per segment between the stations (at least
+    /// [`MIN_ELEMENTS`]) up to [`MAX_ELEMENTS`]; every count between works.
+    pub fn element_range(&self) -> (usize, usize) {
+        let fewest = crate::model::mesh::fewest_elements(&self.mesh_stations());
+        (fewest.max(MIN_ELEMENTS), MAX_ELEMENTS)
     }
 }
 
 /// The widest range of `elements` (a scene declares the part of it its supports allow).
 pub const MIN_ELEMENTS: usize = 2;
 pub const MAX_ELEMENTS: usize = 100_000;
-
-/// Whether station `at` (a fraction of the length) is a node of `elements` equal elements.
-pub fn on_node(at: f64, elements: usize) -> bool {
-    let x = at * elements as f64;
-    (x - x.round()).abs() <= 1e-9 * elements.max(1) as f64
-}

@@ -9,7 +9,15 @@ use std::ops::Range;
 use toml_edit::{ImDocument, Item, Table, Value};
 
 /// The arrays of tables of a scene file: their entries are named `[[load]] #2 "shake"`.
-const ARRAYS_OF_TABLES: [&str; 4] = ["parameter", "support", "load", "sensor"];
+const ARRAYS_OF_TABLES: [&str; 7] = [
+    "parameter",
+    "support",
+    "load",
+    "sensor",
+    "mass",
+    "spring",
+    "foundation",
+];
 
 pub(super) fn read(text: &str, file: &str) -> Result<SceneFile, SceneError> {
     toml::from_str(text).map_err(|e| {

@@ -117,6 +117,8 @@ pub enum OutputId {
         support: usize,
         component: usize,
     },
+    /// The force (moment on `w`) of spring `k` and its dashpot on the rod.
+    SpringForce(usize),
     ShapeX(usize),
     ShapeY(usize),
     /// `[shape] fields` entry `field` at shape sample `point`.
@@ -168,6 +170,8 @@ pub const SENSOR_VR: u32 = 2_000;
 pub const REACTION_VR: u32 = 3_000;
 pub const SHAPE_X_VR: u32 = 10_000;
 pub const SHAPE_Y_VR: u32 = 20_000;
+/// Spring forces `<spring>_force`, after every other block.
+pub const SPRING_FORCE_VR: u32 = 1_000_000;
 pub const REACTION_SUFFIXES: [&str; 3] = ["Rx", "Ry", "M"];
 
 /// The most scene parameters, inputs, sensors, supports and shape samples whose value
@@ -302,6 +306,20 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
                 },
             ));
         }
+    }
+    for (k, s) in scene.springs.iter().enumerate() {
+        vars.push(output(
+            format!("{}_force", s.name),
+            SPRING_FORCE_VR + k as u32,
+            Some(if s.dof == 2 { "N.m" } else { "N" }),
+            format!(
+                "Force of spring {} and its dashpot on the rod along {}; averaged over the last \
+                 communication step (before the first step: the static force)",
+                s.name,
+                ["e1", "e2", "the rotation (a moment)"][s.dof]
+            ),
+            OutputId::SpringForce(k),
+        ));
     }
     for (axis, base, make) in [
         ("x", SHAPE_X_VR, OutputId::ShapeX as fn(usize) -> OutputId),

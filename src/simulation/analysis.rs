@@ -46,13 +46,17 @@ impl Analysis {
         let tau = if omega > 0.0 {
             1.0 / omega
         } else {
-            let (e, rho, h, l) = (
+            // The time scale of bending over the span, L^2 sqrt(rho A / EI) (for a rectangle
+            // written with its height, as it always was).
+            let (e, rho, l) = (
                 values.std(Std::E),
                 values.std(Std::Rho),
-                values.std(Std::Height),
                 values.std(Std::Span),
             );
-            l * l * (12.0 * rho / (e * h * h)).sqrt()
+            match scene.section.rectangle(values) {
+                Some((_, h)) => l * l * (12.0 * rho / (e * h * h)).sqrt(),
+                None => l * l * (rod.section.rho_a / rod.section.ei).sqrt(),
+            }
         };
         if !(tau.is_finite() && tau > 0.0) {
             return Err(SimError::InitialState(format!(

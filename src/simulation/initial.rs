@@ -16,19 +16,23 @@ const MAX_REFINE: u32 = 12;
 /// rod of this length by this fraction of its length (linearly).
 const IMPERFECTION: f64 = 1e-3;
 
-/// The prescribed value of every held dof, in the order of `setup.held`.
-fn prescribed(setup: &Setup, values: &ParamValues) -> Vec<f64> {
-    setup.held.iter().map(|h| h.value.eval(values)).collect()
+/// The prescribed value of every held dof, in the order of `setup.held`: a moving support's
+/// input value, else its `displace` value.
+fn prescribed(setup: &Setup, values: &ParamValues, inputs: &[f64]) -> Vec<f64> {
+    (setup.held.iter())
+        .map(|h| h.input.map_or_else(|| h.value.eval(values), |i| inputs[i]))
+        .collect()
 }
 
-/// The initial displacements of the scene.
+/// The initial displacements of the scene, with the inputs at `inputs`.
 pub fn initial_displacements(
     scene: &Scene,
     values: &ParamValues,
     setup: &Setup,
+    inputs: &[f64],
 ) -> Result<Vec<f64>, SimError> {
     let rod = &setup.rod;
-    let targets = prescribed(setup, values);
+    let targets = prescribed(setup, values, inputs);
     let mut u = vec![0.0; rod.dofs()];
     if scene.initial.state == InitialState::Reference {
         for (h, x) in setup.held.iter().zip(&targets) {

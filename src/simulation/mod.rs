@@ -95,6 +95,8 @@ pub struct Simulation {
     inputs: Vec<f64>,
     /// ... and those to hold over the next one (set by the host).
     next_inputs: Vec<f64>,
+    /// The inputs the initial state was found with (moving supports at these values).
+    initial_inputs: Vec<f64>,
     /// The load magnitudes the load set was last built with, and whether an input or a
     /// tunable parameter changed since.
     magnitudes: Vec<f64>,
@@ -121,19 +123,42 @@ pub struct Simulation {
 }
 
 impl Simulation {
-    /// Checks the values, meshes the scene and finds its initial state.
+    /// Checks the values, meshes the scene and finds its initial state, with the inputs at
+    /// their start values.
     pub fn new(scene: Arc<Scene>, values: ParamValues) -> Result<Simulation, SimError> {
-        scene.check(&values)?;
-        let mut setup = setup::setup(&scene, &values);
         let inputs: Vec<f64> = (0..scene.inputs.len())
             .map(|i| crate::scene::variables::input_start(&scene, i, &values))
             .collect();
-        let mut magnitudes = vec![0.0; scene.loads.len()];
+        Simulation::with_inputs(scene, values, inputs)
+    }
+
+    /// [`Simulation::new`] with the inputs at these values (as a host set them during
+    /// initialization mode): the moving supports' inputs are part of the static initial state.
+    pub fn with_inputs(
+        scene: Arc<Scene>,
+        values: ParamValues,
+        inputs: Vec<f64>,
+    ) -> Result<Simulation, SimError> {
+        scene.check(&values)?;
+        if inputs.len() != scene.inputs.len() || inputs.iter().any(|x| !x.is_finite()) {
+            return Err(SimError::BadArgument(format!(
+                "{} input values, all finite, are needed ({} given)",
+                scene.inputs.len(),
+                inputs.len()
+            )));
+        }
+        let mut setup = setup::setup(&scene, &values);
+        let mut magnitudes = vec![0.0; setup.loads.len()];
         setup::load_magnitudes(&scene, &values, &inputs, &mut magnitudes);
         setup.loads.set_magnitudes(&magnitudes);
         setup.loads.frequency = scene.param_index("Omega").map_or(0.0, |i| values.get(i));
-        let mut initial =
-            DynamicState::at_rest(initial::initial_displacements(&scene, &values, &setup)?);
+        let mut initial = DynamicState::at_rest(initial::initial_displacements(
+            &scene, &values, &setup, &inputs,
+        )?);
+        if let Some(r) = scene.rayleigh {
+            // K0: the tangent of the initial static state, a constant matrix.
+            setup.rod.with_rayleigh(r.alpha, r.beta, &initial.u);
+        }
         let static_reactions = supports::static_reactions(&setup, &initial.u);
         let mut integrator = Midpoint::new(&setup.rod);
         let held: Vec<usize> = setup.held.iter().map(|h| h.dof).collect();
@@ -181,6 +206,7 @@ impl Simulation {
             motion,
             analysis,
             next_inputs: inputs.clone(),
+            initial_inputs: inputs.clone(),
             inputs,
             values,
             setup,
@@ -190,6 +216,11 @@ impl Simulation {
             SimError::InitialState(format!("the initial state has a non-finite {what}"))
         })?;
         Ok(sim)
+    }
+
+    /// The inputs the initial state was found with.
+    pub fn initial_inputs(&self) -> &[f64] {
+        &self.initial_inputs
     }
 
     pub fn scene(&self) -> &Arc<Scene> {

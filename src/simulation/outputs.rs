@@ -23,6 +23,7 @@ impl Simulation {
                 self.read(self.scene().shape_fields[field], self.setup().shape[point])
             }
             OutputId::Frequency(k) => self.frequency(k),
+            OutputId::SpringForce(k) => self.reactions()[self.setup.support_nodes.len() + k][0],
             OutputId::Lyapunov { index, per_period } => self
                 .analysis
                 .exponent(index, per_period.then_some(self.setup().loads.frequency)),

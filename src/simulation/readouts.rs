@@ -6,7 +6,7 @@
 use super::setup::Setup;
 use super::{SimError, Simulation};
 use crate::model::Rod;
-use crate::scene::{ParamValues, Quantity, Reading, Scene, SectionQuantity, Std};
+use crate::scene::{ParamValues, Quantity, Reading, Scene, SectionQuantity};
 
 /// The section's geometry for fiber stresses: area, second moment of area, depth.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,13 +18,15 @@ pub struct Fibers {
 }
 
 impl Fibers {
-    /// The rectangle `b x h` (`h` in the plane of motion).
-    pub fn rectangle(values: &ParamValues) -> Fibers {
-        let (b, h) = (values.std(Std::Width), values.std(Std::Height));
+    /// The scene's section (`[section]`, the `b x h` rectangle by default). A section without a
+    /// depth (a general one that gives none) has NaN: the scene checker refuses fiber stresses
+    /// there, so no output reads it.
+    pub fn of(scene: &Scene, values: &ParamValues) -> Fibers {
+        let properties = scene.section.properties(values);
         Fibers {
-            area: b * h,
-            inertia: b * h * h * h / 12.0,
-            depth: h,
+            area: properties.area,
+            inertia: properties.inertia,
+            depth: scene.section.depth(values).unwrap_or(f64::NAN),
         }
     }
 }
@@ -68,7 +70,7 @@ impl Readouts {
             accelerations: vec![0.0; n],
             trial_accelerations: vec![0.0; n],
             velocity_before: vec![0.0; n],
-            fibers: Fibers::rectangle(values),
+            fibers: Fibers::of(scene, values),
             frequencies: natural_frequencies(&setup.rod, initial, scene.modes)?,
         })
     }

@@ -226,9 +226,7 @@ impl Simulation {
                 .expect("the initial values were valid");
         }
         self.state.copy_from(&self.initial);
-        self.inputs = (0..self.scene.inputs.len())
-            .map(|i| crate::scene::variables::input_start(&self.scene, i, &self.values))
-            .collect();
+        self.inputs.clone_from(&self.initial_inputs);
         self.next_inputs.clone_from(&self.inputs);
         self.input_derivatives.fill(None);
         self.loads_stale = true;

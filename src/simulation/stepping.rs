@@ -204,6 +204,11 @@ impl Simulation {
             &mut self.trial_impulses,
             &mut self.trial_energy,
         );
+        if !self.setup.springs.is_empty() {
+            let du = self.integrator.last_increment();
+            let (u, impulses) = (&self.trial.u, &mut self.trial_impulses);
+            supports::book_spring_forces(&self.setup, u, du, dt, impulses);
+        }
     }
 
     /// Sub-steps of half a forcing period or more sample the excitation at its midpoints only:

@@ -419,3 +419,15 @@ pub fn loads(rod: &Rod, distributed: bool, f: f64, omega: f64, point_force: f64)
     loads.frequency = omega;
     loads
 }
+
+/// Asserts that the scene `text` is refused with a message containing every one of `parts`
+/// (`what` names the case in a failure).
+pub fn assert_refused(what: &str, text: &str, parts: &[&str]) {
+    let e = georod::scene::Scene::parse(text, "bad.toml")
+        .err()
+        .unwrap_or_else(|| panic!("{what}: accepted"))
+        .to_string();
+    for part in parts {
+        assert!(e.contains(part), "{what}: `{e}` lacks `{part}`");
+    }
+}

@@ -53,21 +53,15 @@ fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
         .values_with(o.overrides.iter().map(|(k, v)| (k.as_str(), *v)))
         .map_err(|e| e.to_string())?;
     let s = setup::setup(&scene, &values);
-    let u0 = initial::initial_displacements(&scene, &values, &s).map_err(|e| e.to_string())?;
+    let inputs: Vec<f64> = (0..scene.inputs.len())
+        .map(|i| georod::scene::variables::input_start(&scene, i, &values))
+        .collect();
+    let u0 =
+        initial::initial_displacements(&scene, &values, &s, &inputs).map_err(|e| e.to_string())?;
     let rod = s.rod;
     let length = rod.curve.length();
     let load = &scene.loads[path_load(&scene, o)?];
-    let shape = match load.kind {
-        LoadKind::Point { at } => LoadShape::Point {
-            s: at * length,
-            component: load.direction.component,
-            sign: load.direction.sign,
-        },
-        LoadKind::Distributed => LoadShape::Distributed {
-            component: load.direction.component,
-            sign: load.direction.sign,
-        },
-    };
+    let shape = setup::load_shape(load, length, false);
     let mut q = shape.nodal_vector(&rod);
     let mut load0 = 0.0;
     for l in scene.loads.iter().filter(|l| l.time == TimeLaw::Constant) {

@@ -107,13 +107,16 @@ impl Instance {
     /// parameters still match, else a new one (validation + initial static solve).
     pub(crate) fn initial_simulation(&mut self) -> FmiResult<&mut Simulation> {
         let scene = self.scene().clone();
-        let reusable = self
-            .sim
-            .as_ref()
-            .is_some_and(|s| same_fixed(&scene, s.values(), &self.params));
+        // Moving supports set during initialization mode are part of the initial state.
+        let inputs: Vec<f64> = (0..scene.inputs.len())
+            .map(|i| self.input_value(i))
+            .collect();
+        let reusable = self.sim.as_ref().is_some_and(|s| {
+            same_fixed(&scene, s.values(), &self.params) && s.initial_inputs() == inputs
+        });
         if !reusable {
             self.sim = None; // release the old mesh before building the new one
-            let sim = Simulation::new(scene.clone(), self.params.clone())
+            let sim = Simulation::with_inputs(scene.clone(), self.params.clone(), inputs)
                 .map_err(|e| Failure::Error(e.to_string()))?;
             self.log
                 .event(|| format!("initial state of the {} scene computed", scene.name));

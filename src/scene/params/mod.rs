@@ -10,7 +10,7 @@ mod standard;
 
 pub use standard::{
     default_settable, is_standard_name, standard_params, Needs, Std, ELEMENTS, INTEGRATOR,
-    LYAPUNOV, LYAPUNOV_ALIGN, LYAPUNOV_START, PERTURBATION, SCENE_PARAM_VR, WELL,
+    LYAPUNOV, LYAPUNOV_ALIGN, LYAPUNOV_START, PERTURBATION, SCENE_PARAM_VR, SECTION_AT, WELL,
 };
 
 use std::fmt;

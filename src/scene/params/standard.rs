@@ -41,7 +41,7 @@ pub const INTEGRATOR: &str = "integrator";
 pub const WELL: &str = "well";
 
 /// The parameters of every scene, in this order (indices of [`Std`]).
-const ALWAYS: [Standard; 10] = [
+const ALWAYS: [Standard; 8] = [
     real("E", 0, "Pa", "Young's modulus", 1.2e4, Range::positive()),
     real(
         "nu",
@@ -62,22 +62,6 @@ const ALWAYS: [Standard; 10] = [
         Range::at_least(0.0),
     ),
     real(
-        "b",
-        4,
-        "m",
-        "Width of the rectangular cross section",
-        1.0,
-        Range::positive(),
-    ),
-    real(
-        "h",
-        5,
-        "m",
-        "Height of the rectangular cross section (in the plane of motion)",
-        1.0,
-        Range::positive(),
-    ),
-    real(
         "L",
         6,
         "m",
@@ -91,9 +75,9 @@ const ALWAYS: [Standard; 10] = [
         var_type: VarType::Integer,
         variability: Variability::Fixed,
         unit: None,
-        description: "Number of finite elements (supports must fall on nodes)",
+        description: "Number of finite elements (spread over the segments between the supports)",
         start: 10.0,
-        // Narrowed per scene to the counts its supports allow (`Scene::element_range`).
+        // Narrowed per scene to one element per segment at least (`Scene::element_range`).
         range: Range::between(
             crate::scene::MIN_ELEMENTS as f64,
             crate::scene::MAX_ELEMENTS as f64,
@@ -227,13 +211,15 @@ pub enum Std {
     Nu,
     Rho,
     Damping,
-    Width,
-    Height,
     Span,
     Elements,
     DtMax,
     Integrator,
 }
+
+/// Where the section's dimensions go in a scene's parameter table: right after the parameters
+/// every scene has.
+pub const SECTION_AT: usize = Std::Integrator as usize + 1;
 
 /// Value references of scene-declared parameters start here (the standard ones use 0..100).
 pub const SCENE_PARAM_VR: u32 = 100;
@@ -284,9 +270,12 @@ pub fn standard_params(needs: &Needs) -> Vec<Param> {
     params
 }
 
-/// The names of the standard parameters a `[defaults]` table may set.
+/// The names of the standard parameters a `[defaults]` table may set (and a rectangle's `b`,
+/// `h`).
 pub fn default_settable(name: &str) -> bool {
     (ALWAYS.iter().chain(&HARMONIC).any(|s| s.name == name) && name != "L")
+        || name == "b"
+        || name == "h"
         || name == LYAPUNOV
         || name == LYAPUNOV_START
         || name == LYAPUNOV_ALIGN

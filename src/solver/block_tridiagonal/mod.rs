@@ -117,6 +117,12 @@ impl BlockTridiagonal {
         self.lower[i] += d;
     }
 
+    /// Adds `value` to the diagonal entry of global dof `dof` (a point mass, spring or dashpot).
+    pub fn add_diagonal(&mut self, dof: usize, value: f64) {
+        debug_assert!(!self.factored);
+        self.diag[dof / 3][(dof % 3, dof % 3)] += value;
+    }
+
     /// Replaces the rows and columns of the constrained `dofs` by those of the identity, which is
     /// the same as removing them from the system (their right-hand side must be zero).
     pub fn constrain(&mut self, dofs: &[usize]) {

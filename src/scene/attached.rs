@@ -1,0 +1,137 @@
+//! `[[mass]]`, `[[spring]]` and `[[foundation]]`: point masses with rotary inertia, springs
+//! and dashpots from a dof to ground, and Winkler foundations on `u2` over a part of the rod.
+//! Their stations are nodes of every mesh.
+use super::checker::{entry, Checker};
+use super::file::{FoundationFile, MassFile, SpringFile};
+use super::{SceneError, Support, DOF_NAMES};
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointMass {
+    pub name: String,
+    pub at: f64,
+    /// Mass (on u1 and u2) and rotary inertia (on w).
+    pub m: f64,
+    pub j: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spring {
+    pub name: String,
+    pub at: f64,
+    /// 0 `u1`, 1 `u2`, 2 `w`.
+    pub dof: usize,
+    pub k: f64,
+    pub c: f64,
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct Foundation {
+    pub name: String,
+    /// Stiffness and damping per unit length, on u2.
+    pub k: f64,
+    pub c: f64,
+    /// Stations.
+    pub from: f64,
+    pub to: f64,
+}
+
+/// A number `>= 0` (`what` says what it is), or its default when absent.
+fn non_negative(
+    c: &Checker,
+    x: Option<f64>,
+    default: Option<f64>,
+    key: &str,
+    what: &str,
+) -> Result<f64, SceneError> {
+    let x = match (x, default) {
+        (Some(x), _) => x,
+        (None, Some(d)) => d,
+        (None, None) => return c.err(key, format!("missing: {what}")),
+    };
+    if !(x.is_finite() && x >= 0.0) {
+        return c.err(key, format!("{x} is out of range: must be >= 0"));
+    }
+    Ok(x)
+}
+
+pub(super) fn masses(c: &Checker, raw: &[MassFile]) -> Result<Vec<PointMass>, SceneError> {
+    (raw.iter().enumerate())
+        .map(|(i, m)| {
+            let key = |k: &str| entry("mass", i, m.name.as_ref(), k);
+            Ok(PointMass {
+                name: c.identifier(m.name.as_ref(), &key("name"))?,
+                at: c.station(m.at, &key("at"))?,
+                m: non_negative(c, m.m, None, &key("m"), "the mass (kg)")?,
+                j: non_negative(c, m.rotary, Some(0.0), &key("J"), "")?,
+            })
+        })
+        .collect()
+}
+
+pub(super) fn springs(
+    c: &Checker,
+    raw: &[SpringFile],
+    supports: &[Support],
+) -> Result<Vec<Spring>, SceneError> {
+    (raw.iter().enumerate())
+        .map(|(i, s)| {
+            let key = |k: &str| entry("spring", i, s.name.as_ref(), k);
+            let name = c.identifier(s.name.as_ref(), &key("name"))?;
+            let at = c.station(s.at, &key("at"))?;
+            let dof_name = c.required(s.dof.as_deref(), &key("dof"), "\"u1\", \"u2\" or \"w\"")?;
+            let dof = c.one_of(dof_name, &DOF_NAMES, &key("dof"))?;
+            if let Some(held) = supports
+                .iter()
+                .find(|p| (p.at - at).abs() < 1e-12 && p.fixed[dof])
+            {
+                return c.err(
+                    key("dof"),
+                    format!(
+                        "support `{}` already holds {dof_name} at {at}: a spring there would \
+                         carry nothing",
+                        held.name
+                    ),
+                );
+            }
+            if let Some(m) = s.motion.as_deref() {
+                c.one_of(m, &["none"], &key("motion"))?;
+            }
+            Ok(Spring {
+                name,
+                at,
+                dof,
+                k: non_negative(c, s.k, None, &key("k"), "the stiffness (N/m, N.m/rad on w)")?,
+                c: non_negative(c, s.c, Some(0.0), &key("c"), "")?,
+            })
+        })
+        .collect()
+}
+
+pub(super) fn foundations(
+    c: &Checker,
+    raw: &[FoundationFile],
+) -> Result<Vec<Foundation>, SceneError> {
+    (raw.iter().enumerate())
+        .map(|(i, f)| {
+            let key = |k: &str| entry("foundation", i, f.name.as_ref(), k);
+            let name = c.identifier(f.name.as_ref(), &key("name"))?;
+            let from = f
+                .from
+                .map_or(Ok(0.0), |x| c.station(Some(x), &key("from")))?;
+            let to = f.to.map_or(Ok(1.0), |x| c.station(Some(x), &key("to")))?;
+            if from >= to {
+                return c.err(
+                    key("to"),
+                    format!("[{from}, {to}] is empty: `from` must be below `to`"),
+                );
+            }
+            Ok(Foundation {
+                name,
+                k: non_negative(c, f.k, None, &key("k"), "the stiffness per length (N/m2)")?,
+                c: non_negative(c, f.c, Some(0.0), &key("c"), "")?,
+                from,
+                to,
+            })
+        })
+        .collect()
+}

@@ -1,0 +1,173 @@
+//! Where and along what a `[[load]]` acts, by its `kind`: a point force (`at`), a distributed
+//! load (over `[from, to]`, varying linearly from `value` to `value_end`), a point moment about
+//! e3 (`at`), or gravity (an acceleration on the rod's mass). The time law and the magnitude
+//! are checked in `items.rs`.
+use super::checker::Checker;
+use super::file::LoadFile;
+use super::params::{Param, Variability};
+use super::{Direction, LoadKind, SceneError, Slot};
+
+pub(super) const KINDS: [&str; 5] = ["point", "distributed", "moment", "gravity", "moving"];
+
+/// A load's place and direction, with the unit of its magnitude.
+pub(super) struct Placed {
+    pub kind: LoadKind,
+    pub direction: Direction,
+    pub unit: &'static str,
+}
+
+/// The direction a moment acts in: about e3, counter-clockwise (the rotation dof).
+pub const ABOUT_E3: Direction = Direction {
+    component: 2,
+    sign: 1.0,
+};
+
+pub(super) fn place(
+    c: &Checker,
+    l: &LoadFile,
+    params: &[Param],
+    key: &dyn Fn(&str) -> String,
+) -> Result<Placed, SceneError> {
+    let kind_name = c.required(
+        l.kind.as_deref(),
+        &key("kind"),
+        "\"point\", \"distributed\", \"moment\", \"gravity\" or \"moving\"",
+    )?;
+    let kind = c.one_of(kind_name, &KINDS, &key("kind"))?;
+    let refuse = |k: &str, present: bool, why: &str| -> Result<(), SceneError> {
+        if present {
+            return c.err(
+                key(k),
+                format!("a {} load has no `{k}`: {why}", KINDS[kind]),
+            );
+        }
+        Ok(())
+    };
+    if kind != 1 {
+        let why = "only a distributed load acts over [from, to]";
+        refuse("from", l.from.is_some(), why)?;
+        refuse("to", l.to.is_some(), why)?;
+        refuse("value_end", l.value_end.is_some(), why)?;
+    }
+    if kind == 1 || kind == 3 || kind == 4 {
+        refuse("at", l.at.is_some(), "it acts along the rod")?;
+    }
+    if kind != 4 {
+        let why = "only a moving load travels";
+        refuse("speed", l.speed.is_some(), why)?;
+        refuse("enter", l.enter.is_some(), why)?;
+    }
+    if kind == 2 {
+        refuse(
+            "direction",
+            l.direction.is_some(),
+            "it turns about e3, counter-clockwise for a positive value",
+        )?;
+        let at = c.station(l.at, &key("at"))?;
+        return Ok(Placed {
+            kind: LoadKind::Moment { at },
+            direction: ABOUT_E3,
+            unit: "N.m",
+        });
+    }
+    let direction = match (kind, l.direction.as_deref()) {
+        (3, None) => Direction {
+            component: 1,
+            sign: -1.0,
+        },
+        (_, dir) => {
+            let dir = c.required(dir, &key("direction"), "\"e1\", \"e2\", \"-e1\" or \"-e2\"")?;
+            let d = c.one_of(dir, &["e1", "e2", "-e1", "-e2"], &key("direction"))?;
+            Direction {
+                component: d % 2,
+                sign: if d < 2 { 1.0 } else { -1.0 },
+            }
+        }
+    };
+    let (kind, unit) = match kind {
+        0 => (
+            LoadKind::Point {
+                at: c.station(l.at, &key("at"))?,
+            },
+            "N",
+        ),
+        1 => (distributed(c, l, params, key)?, "N/m"),
+        3 => (LoadKind::Gravity, "m/s2"),
+        _ => (moving(c, l, params, key)?, "N"),
+    };
+    Ok(Placed {
+        kind,
+        direction,
+        unit,
+    })
+}
+
+/// Over the whole rod and uniform: the paper's load, as it always was; else over `[from, to]`
+/// with its end value.
+fn distributed(
+    c: &Checker,
+    l: &LoadFile,
+    params: &[Param],
+    key: &dyn Fn(&str) -> String,
+) -> Result<LoadKind, SceneError> {
+    let from = l
+        .from
+        .map_or(Ok(0.0), |x| c.station(Some(x), &key("from")))?;
+    let to = l.to.map_or(Ok(1.0), |x| c.station(Some(x), &key("to")))?;
+    if from >= to {
+        return c.err(
+            key("to"),
+            format!("[{from}, {to}] is empty: `from` must be below `to`"),
+        );
+    }
+    let value_end = match &l.value_end {
+        None => None,
+        Some(v) => Some(c.slot(v, params, &key("value_end"))?),
+    };
+    if from == 0.0 && to == 1.0 && value_end.is_none() {
+        return Ok(LoadKind::Distributed);
+    }
+    Ok(LoadKind::Patch {
+        from,
+        to,
+        value_end,
+    })
+}
+
+/// Speed (> 0) and entry time of a moving load: numbers or fixed parameters (the path of the
+/// load is laid out when the run starts).
+fn moving(
+    c: &Checker,
+    l: &LoadFile,
+    params: &[Param],
+    key: &dyn Fn(&str) -> String,
+) -> Result<LoadKind, SceneError> {
+    let fixed_slot = |v: &toml::Value, k: &str| {
+        let slot = c.slot(v, params, &key(k))?;
+        if let Slot::Param { index, .. } = slot {
+            if params[index].variability != Variability::Fixed {
+                return c.err(
+                    key(k),
+                    format!(
+                        "parameter `{}` is tunable: a moving load's path is fixed for the run \
+                         (make it fixed)",
+                        params[index].name
+                    ),
+                );
+            }
+        }
+        Ok(slot)
+    };
+    let speed = c.required(l.speed.as_ref(), &key("speed"), "the speed in m/s (> 0)")?;
+    let speed = fixed_slot(speed, "speed")?;
+    if let Slot::Number(v) = speed {
+        if v <= 0.0 {
+            return c.err(key("speed"), format!("{v} is out of range: must be > 0"));
+        }
+    }
+    let enter = match &l.enter {
+        None => Slot::Number(0.0),
+        Some(v) => fixed_slot(v, "enter")?,
+    };
+    Ok(LoadKind::Moving { speed, enter })
+}
