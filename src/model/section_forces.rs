@@ -67,12 +67,17 @@ impl Rod {
     /// element, at a node the mean of what its elements transmit to it.
     pub fn section_forces_at(&self, u: &[f64], s: f64) -> SectionForces {
         let n = self.elements.len();
-        let x = (s / self.curve.length() * n as f64).clamp(0.0, n as f64);
-        let node = x.round();
-        if (x - node).abs() > NODE_TOLERANCE * n as f64 {
-            return self.element_section_forces(u, (x.floor() as usize).min(n - 1));
-        }
-        let node = node as usize;
+        let point = self.point_at(s);
+        let local = point.weights.1;
+        // The arc length's round-off in element units grows with the element count.
+        let tolerance = NODE_TOLERANCE * n as f64;
+        let node = if local <= tolerance {
+            point.element
+        } else if local >= 1.0 - tolerance {
+            point.element + 1
+        } else {
+            return self.element_section_forces(u, point.element);
+        };
         match node {
             0 => self.element_node_forces(u, 0, 0),
             i if i == n => self.element_node_forces(u, n - 1, 1),
@@ -106,6 +111,38 @@ mod tests {
             assert!((f.n - expected).abs() < 1e-12 * expected, "{s}: {f:?}");
             assert!(f.q.abs() < 1e-12 * expected && f.m.abs() < 1e-12 * expected);
         }
+    }
+
+    /// A mesh of unequal elements (nodes at 0, 0.3, 0.5, 1.4, 2 of a rod of length 2), each
+    /// stretched by its own strain: a station inside an element reads that element's `EA eps`,
+    /// a station on an interior node the mean of its two elements'.
+    #[test]
+    fn unequal_elements_read_the_element_that_holds_the_station() {
+        let section = Section::rectangular(2.0e5, 0.3, 1.0, 0.1, 0.2);
+        let fractions = [0.0, 0.15, 0.25, 0.7, 1.0];
+        let curve = ReferenceCurve::Straight { length: 2.0 };
+        let rod = Rod::with_nodes(curve, section, 0.0, &fractions);
+        let strains = [1e-3, 2e-3, 3e-3, 4e-3];
+        let mut u = vec![0.0; rod.dofs()];
+        for e in 0..4 {
+            let length = rod.node_s[e + 1] - rod.node_s[e];
+            u[3 * (e + 1) + U1] = u[3 * e + U1] + strains[e] * length;
+        }
+        let inside = [(0.1, 0), (0.4, 1), (1.0, 2), (1.9, 3)];
+        for (s, e) in inside {
+            let got = rod.section_forces_at(&u, s).n;
+            let want = section.ea * strains[e];
+            assert!(
+                (got - want).abs() < 1e-9 * want,
+                "s = {s}: {got} instead of {want}"
+            );
+        }
+        let got = rod.section_forces_at(&u, 1.0 + 0.4).n;
+        let want = section.ea * 0.5 * (strains[2] + strains[3]);
+        assert!(
+            (got - want).abs() < 1e-9 * want,
+            "node at 1.4: {got} instead of {want}"
+        );
     }
 
     /// Pure bending of a straight rod into a circle of curvature `k` (exact: nodes on the circle,
