@@ -162,3 +162,20 @@ def test_binary_refuses_a_wrong_library(
     assert r.returncode != 0, r.stdout
     assert message in r.stderr, r.stderr
     assert not (tmp_path / "Beam.fmu").exists()
+
+
+def test_fmu_without_binary_packs_what_build_fmus_built(
+    fmu_paths: dict[str, Path], tmp_path: Path
+) -> None:
+    """Without --binary or --lib, `georod fmu` takes the linux64 (glibc 2.17) and win64 libraries
+    that scripts/build_fmus left in the target folder, and says darwin64 is left out."""
+    out = tmp_path / "Beam.fmu"
+    r = run_cmd([GEOROD_CLI, "fmu", REPO / "scenes" / "BuckledBeam.toml", "-o", out])
+    assert r.returncode == 0, r.stderr
+    target = REPO / "target"
+    assert f"binaries/linux64: {target / 'x86_64-unknown-linux-gnu'}" in r.stdout, r.stdout
+    assert f"binaries/win64: {target / 'x86_64-pc-windows-gnu'}" in r.stdout, r.stdout
+    assert "no darwin64 library" in r.stderr
+    with zipfile.ZipFile(out) as z, zipfile.ZipFile(fmu_paths["BuckledBeam"]) as built:
+        for name in ("binaries/linux64/BuckledBeam.so", "binaries/win64/BuckledBeam.dll"):
+            assert z.read(name) == built.read(name), name

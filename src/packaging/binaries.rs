@@ -193,3 +193,43 @@ pub fn check_library(platform: Platform, lib: &[u8]) -> Result<(), String> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn platform_names() {
+        for p in Platform::ALL {
+            assert_eq!(Platform::from_folder(p.folder()), Ok(p));
+        }
+        let e = Platform::from_folder("win32").unwrap_err();
+        assert!(e.contains("unknown platform `win32`"), "{e}");
+    }
+
+    #[test]
+    fn not_an_object_file_is_refused() {
+        let e = check_library(Platform::Win64, b"[geometry]\nshape = 1\n").unwrap_err();
+        assert_eq!(
+            e,
+            "not a win64 library: expected a PE32+ DLL for x86_64, found no known object format"
+        );
+    }
+
+    #[cfg(all(target_os = "linux", target_arch = "x86_64"))]
+    #[test]
+    fn an_elf_without_fmi_functions_or_of_another_platform_is_refused() {
+        // This test executable: an x86_64 ELF that exports no FMI function.
+        let me = std::fs::read(std::env::current_exe().unwrap()).unwrap();
+        let e = check_library(Platform::Linux64, &me).unwrap_err();
+        assert!(
+            e.contains("not a shared library") || e.contains("does not export 34 of"),
+            "{e}"
+        );
+        let e = check_library(Platform::Darwin64, &me).unwrap_err();
+        assert!(
+            e.starts_with("not a darwin64 library: expected a Mach-O"),
+            "{e}"
+        );
+    }
+}
