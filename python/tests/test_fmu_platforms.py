@@ -20,14 +20,9 @@ import fmpy
 import numpy as np
 import pytest
 
-from helpers import GEOROD_CLI, RELEASE_DIR, REPO, SCENES, FmuInfo, run_cmd, trajectory
+from helpers import C_MATH, GEOROD_CLI, RELEASE_DIR, REPO, SCENES, FmuInfo, run_cmd, trajectory
 
 GLIBC_BASELINE = (2, 17)
-#: C math functions the library must not import (it takes them from the libm crate).
-C_MATH = {
-    *"sin cos tan asin acos atan atan2 sinh cosh tanh asinh acosh atanh exp exp2 expm1".split(),
-    *"log log2 log10 log1p pow hypot cbrt sincos fmod remainder erf erfc lgamma tgamma".split(),
-}
 
 
 def win64_library(info: FmuInfo) -> Path:

@@ -14,6 +14,7 @@ Needs gcc-mingw-w64-x86-64 and wine64 (scripts/install_platform_deps, which scri
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import struct
 import subprocess
@@ -23,7 +24,7 @@ from pathlib import Path
 import fmpy
 import pytest
 
-from helpers import FMU_DIR, REPO, SCENE_FILES, FmuInfo, instantiate, release
+from helpers import C_MATH, FMU_DIR, REPO, SCENE_FILES, FmuInfo, instantiate, release
 
 HERE = Path(__file__).resolve().parent
 WINE = Path("/usr/lib/wine/wine64")
@@ -189,3 +190,22 @@ def test_buckled_beam_default_experiment_bit_identical_and_state_crosses(
     then_linux, _ = linux64_run(info, h, later, state, k0=n)
     then_win, _ = run_host(host, info, h, later, state_in=state_file, k0=n)
     assert then_win == then_linux, "a linux64 state continues differently on win64"
+
+
+#: C-library functions the win64 library may import: exact by definition (no rounding), so they
+#: cannot make a platform difference; every other mathematical function comes from libm (crate).
+EXACT_C_MATH = {"floor", "ceil", "fmod", "trunc", "round", "fabs", "copysign"}
+
+
+def test_win64_library_imports_no_inexact_c_math(extracted: dict[str, FmuInfo]) -> None:
+    objdump = shutil.which("x86_64-w64-mingw32-objdump")
+    if objdump is None:
+        pytest.fail("x86_64-w64-mingw32-objdump missing: install binutils-mingw-w64-x86-64")
+    info = extracted["BuckledBeam"]
+    dll = info.unzipdir / "binaries" / "win64" / f"{info.md.coSimulation.modelIdentifier}.dll"
+    r = subprocess.run([objdump, "-p", str(dll)], capture_output=True, text=True, check=False)
+    assert r.returncode == 0, r.stderr
+    imported = set(re.findall(r"^\s+[0-9a-f]+\s+\d+\s+(\w+)$", r.stdout, flags=re.MULTILINE))
+    assert "ProcessPrng" in imported, "the import table was not read (objdump output changed?)"
+    math = sorted((imported & C_MATH) - EXACT_C_MATH)
+    assert not math, f"the win64 library takes {math} from the C library"
