@@ -39,6 +39,13 @@ SCENE_FILES: tuple[Path, ...] = tuple(
     sorted((REPO / "scenes").glob("*.toml")) + sorted((REPO / "examples").glob("*.toml"))
 )
 
+#: C math functions the FMU libraries must not import: they take them from the libm crate, the
+#: same bits on every platform (test_fmu_platforms.py, test_fmu_win64.py).
+C_MATH = {
+    *"sin cos tan asin acos atan atan2 sinh cosh tanh asinh acosh atanh exp exp2 expm1".split(),
+    *"log log2 log10 log1p pow hypot cbrt sincos fmod remainder erf erfc lgamma tgamma".split(),
+}
+
 # FMI 2.0 status codes (fmi2Status)
 OK, WARNING, DISCARD, ERROR, FATAL = 0, 1, 2, 3, 4
 STATUS_LABEL = ["OK", "Warning", "Discard", "Error", "Fatal", "Pending"]

@@ -14,7 +14,7 @@ fn describe(var: &Variable) -> String {
 fn type_name(t: VarType) -> &'static str {
     match t {
         VarType::Real => "Real",
-        VarType::Integer | VarType::Enumeration => "Integer",
+        VarType::Integer => "Integer",
     }
 }
 

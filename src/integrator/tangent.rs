@@ -184,7 +184,7 @@ impl Lyapunov {
             let inverse = 1.0 / r;
             u.iter_mut().chain(v.iter_mut()).for_each(|x| *x *= inverse);
             if book {
-                self.log_growth[j] += r.ln();
+                self.log_growth[j] += libm::log(r);
             }
         }
     }

@@ -23,7 +23,7 @@ impl ReferenceCurve {
     /// `t0 = asin(L / (2R))`, `alpha(s) = t0 - s/R`.
     pub fn arc(span: f64, rise: f64) -> ReferenceCurve {
         let radius = (0.25 * span * span + rise * rise) / (2.0 * rise);
-        let half_angle = (0.5 * span / radius).clamp(-1.0, 1.0).asin();
+        let half_angle = libm::asin((0.5 * span / radius).clamp(-1.0, 1.0));
         ReferenceCurve::CircularArc {
             radius,
             half_angle,
@@ -53,7 +53,7 @@ impl ReferenceCurve {
                 radius, half_angle, ..
             } => half_angle - s / radius,
             ReferenceCurve::TwoBar { span, rise } => {
-                let angle = rise.atan2(0.5 * span);
+                let angle = libm::atan2(rise, 0.5 * span);
                 if s < 0.5 * self.length() {
                     angle
                 } else {

@@ -1,12 +1,15 @@
 //! Packaging a scene into an FMI 2.0 Co-Simulation FMU: `modelDescription.xml` (generated from
-//! the scene), `binaries/linux64/<name>.so` (the one georod cdylib, whatever the scene),
+//! the scene), `binaries/<platform>/<name><suffix>` (the one georod cdylib of each platform,
+//! whatever the scene: linux64, win64, darwin64, see [`binaries`]),
 //! `resources/scene.toml` (the scene file, read again by the binary at instantiation) and
 //! `documentation/index.html`. Archives are reproducible: fixed entry order and timestamps.
+pub mod binaries;
 pub mod documentation;
 pub mod model_description;
 
 use crate::scene::Scene;
 use crate::simulation::Simulation;
+use binaries::Platform;
 use std::fs;
 use std::io::Write as _;
 use std::path::{Path, PathBuf};
@@ -17,14 +20,13 @@ use zip::{CompressionMethod, ZipWriter};
 /// Where the scene file lies inside an FMU.
 pub const SCENE_RESOURCE: &str = "scene.toml";
 
-/// The platform folder of `binaries/` for this build.
-pub fn platform() -> &'static str {
+/// The platform of this build (where `georod fmu` runs), if an FMU can carry its library.
+pub fn host_platform() -> Option<Platform> {
     match (std::env::consts::OS, std::env::consts::ARCH) {
-        ("windows", "x86_64") => "win64",
-        ("windows", _) => "win32",
-        ("macos", _) => "darwin64",
-        ("linux", "x86_64") => "linux64",
-        _ => "linux32",
+        ("windows", "x86_64") => Some(Platform::Win64),
+        ("macos", "x86_64" | "aarch64") => Some(Platform::Darwin64),
+        ("linux", "x86_64") => Some(Platform::Linux64),
+        _ => None,
     }
 }
 
@@ -45,9 +47,24 @@ pub fn check_initial_state(scene: &Scene) -> Result<(), String> {
         .map_err(|e| format!("{}: with its default parameters: {e}", scene.name))
 }
 
-/// Writes the FMU of `scene` to `out` (through a temporary file: on error nothing is left).
-pub fn package(scene: &Scene, lib: &[u8], out: &Path) -> Result<Packaged, String> {
-    check_library(lib)?;
+/// A platform's library to pack.
+pub struct Library {
+    pub platform: Platform,
+    pub bytes: Vec<u8>,
+}
+
+/// Writes the FMU of `scene` with `libraries` (at least one, one per platform) to `out`
+/// (through a temporary file: on error nothing is left).
+pub fn package(scene: &Scene, libraries: &[Library], out: &Path) -> Result<Packaged, String> {
+    if libraries.is_empty() {
+        return Err("no platform library to pack".to_string());
+    }
+    for (i, lib) in libraries.iter().enumerate() {
+        if libraries[..i].iter().any(|l| l.platform == lib.platform) {
+            return Err(format!("two {} libraries given", lib.platform));
+        }
+        binaries::check_library(lib.platform, &lib.bytes)?;
+    }
     check_initial_state(scene)?;
     let md = model_description::model_description(scene);
     let doc = documentation::documentation(scene, &md.guid);
@@ -58,7 +75,7 @@ pub fn package(scene: &Scene, lib: &[u8], out: &Path) -> Result<Packaged, String
         .file_name()
         .ok_or_else(|| format!("{}: not a file path", out.display()))?;
     let tmp = out.with_file_name(format!(".{}.tmp", file_name.to_string_lossy()));
-    let result = write_zip(&tmp, scene, lib, &md.xml, &doc);
+    let result = write_zip(&tmp, scene, libraries, &md.xml, &doc);
     if let Err(e) = result {
         let _ = fs::remove_file(&tmp);
         return Err(e);
@@ -75,7 +92,13 @@ pub fn package(scene: &Scene, lib: &[u8], out: &Path) -> Result<Packaged, String
     })
 }
 
-fn write_zip(tmp: &Path, scene: &Scene, lib: &[u8], xml: &str, doc: &str) -> Result<(), String> {
+fn write_zip(
+    tmp: &Path,
+    scene: &Scene,
+    libraries: &[Library],
+    xml: &str,
+    doc: &str,
+) -> Result<(), String> {
     let io = |e: std::io::Error| format!("{}: {e}", tmp.display());
     let zerr = |e: zip::result::ZipError| format!("{}: {e}", tmp.display());
     let file = fs::File::create(tmp).map_err(io)?;
@@ -84,37 +107,29 @@ fn write_zip(tmp: &Path, scene: &Scene, lib: &[u8], xml: &str, doc: &str) -> Res
         .compression_method(CompressionMethod::Deflated)
         .unix_permissions(0o644);
     let binary = text.unix_permissions(0o755);
-    let library = format!(
-        "binaries/{}/{}{}",
-        platform(),
-        scene.name,
-        std::env::consts::DLL_SUFFIX
-    );
+    // Fixed order (platforms sorted) for reproducible archives.
+    let mut sorted: Vec<&Library> = libraries.iter().collect();
+    sorted.sort_by_key(|l| l.platform);
+    let paths: Vec<String> = sorted
+        .iter()
+        .map(|l| {
+            let p = l.platform;
+            format!("binaries/{}/{}{}", p.folder(), scene.name, p.suffix())
+        })
+        .collect();
     let resource = format!("resources/{SCENE_RESOURCE}");
-    let entries: [(&str, &[u8], SimpleFileOptions); 4] = [
-        ("modelDescription.xml", xml.as_bytes(), text),
-        (&library, lib, binary),
-        (&resource, scene.source.as_bytes(), text),
-        ("documentation/index.html", doc.as_bytes(), text),
-    ];
+    let mut entries: Vec<(&str, &[u8], SimpleFileOptions)> =
+        vec![("modelDescription.xml", xml.as_bytes(), text)];
+    for (path, lib) in paths.iter().zip(&sorted) {
+        entries.push((path, &lib.bytes, binary));
+    }
+    entries.push((&resource, scene.source.as_bytes(), text));
+    entries.push(("documentation/index.html", doc.as_bytes(), text));
     for (entry, bytes, options) in entries {
         zip.start_file(entry, options).map_err(zerr)?;
         zip.write_all(bytes).map_err(io)?;
     }
     zip.finish().map_err(zerr)?;
-    Ok(())
-}
-
-/// The library must be a shared library exporting the FMI functions.
-fn check_library(lib: &[u8]) -> Result<(), String> {
-    let shared =
-        lib.starts_with(b"\x7fELF") || lib.starts_with(b"MZ") || lib.starts_with(&[0xcf, 0xfa]);
-    if !shared {
-        return Err("the FMU library is not a shared library".to_string());
-    }
-    if !lib.windows(16).any(|w| w == b"fmi2Instantiate\0") {
-        return Err("the FMU library does not export fmi2Instantiate".to_string());
-    }
     Ok(())
 }
 

@@ -101,7 +101,7 @@ pub struct ModelDescription {
 fn number(v: &Variable, x: f64) -> String {
     match v.var_type {
         VarType::Real => real(x),
-        VarType::Integer | VarType::Enumeration => format!("{}", x as i64),
+        VarType::Integer => format!("{}", x as i64),
     }
 }
 
@@ -156,32 +156,6 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
         let _ = writeln!(w, "  </UnitDefinitions>");
     }
 
-    let types: Vec<_> = ENUMERATIONS
-        .iter()
-        .filter(|(name, ..)| vars.iter().any(|v| v.declared_type == Some(name)))
-        .collect();
-    if !types.is_empty() {
-        let _ = writeln!(w, "  <TypeDefinitions>");
-        for (name, description, items) in types {
-            let _ = writeln!(
-                w,
-                r#"    <SimpleType name="{name}" description="{}">"#,
-                escape(description)
-            );
-            let _ = writeln!(w, "      <Enumeration>");
-            for (item, value, desc) in *items {
-                let _ = writeln!(
-                    w,
-                    r#"        <Item name="{item}" value="{value}" description="{}"/>"#,
-                    escape(desc)
-                );
-            }
-            let _ = writeln!(w, "      </Enumeration>");
-            let _ = writeln!(w, "    </SimpleType>");
-        }
-        let _ = writeln!(w, "  </TypeDefinitions>");
-    }
-
     let _ = writeln!(w, "  <LogCategories>");
     for (name, desc) in LOG_CATEGORIES {
         let _ = writeln!(
@@ -224,9 +198,6 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
             v.timing.name(),
         );
         let mut attrs = String::new();
-        if let Some(t) = v.declared_type {
-            let _ = write!(attrs, r#" declaredType="{t}""#);
-        }
         if let Some(u) = &v.unit {
             let _ = write!(attrs, r#" unit="{}""#, escape(u));
         }
@@ -244,7 +215,6 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
         let element = match v.var_type {
             VarType::Real => "Real",
             VarType::Integer => "Integer",
-            VarType::Enumeration => "Enumeration",
         };
         let _ = writeln!(w, "      <{element}{attrs}/>");
         let _ = writeln!(w, "    </ScalarVariable>");
@@ -272,22 +242,3 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
     let xml = x.replacen(r#"guid="""#, &format!(r#"guid="{guid}""#), 1);
     ModelDescription { xml, guid }
 }
-
-/// An enumeration item: (name, value, description).
-type Item = (&'static str, i32, &'static str);
-
-/// The enumeration types: (name, description, items).
-const ENUMERATIONS: [(&str, &str, &[Item]); 1] = [
-    (
-        "Integrator",
-        "Time integration scheme",
-        &[
-            ("midpoint", 1, "Implicit midpoint rule (symplectic, conserves momenta)"),
-            (
-                "energy_momentum",
-                2,
-                "Energy-momentum scheme (discrete gradient, Cayley rotations): conserves energy, linear and angular momentum",
-            ),
-        ],
-    ),
-];

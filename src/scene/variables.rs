@@ -158,8 +158,6 @@ pub struct Variable {
     pub start: Option<f64>,
     pub range: Range,
     pub role: Role,
-    /// For an Enumeration: the name of its declared type.
-    pub declared_type: Option<&'static str>,
 }
 
 const LYAPUNOV_VR: u32 = 40;
@@ -200,7 +198,6 @@ pub(super) fn output(
         start: None,
         range: Range::ANY,
         role: Role::Output(id),
-        declared_type: None,
     }
 }
 
@@ -223,7 +220,6 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
             start: Some(p.start),
             range: p.range,
             role: Role::Parameter(i),
-            declared_type: (p.var_type == VarType::Enumeration).then_some("Integrator"),
         });
     }
     for (i, input) in scene.inputs.iter().enumerate() {
@@ -238,7 +234,6 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
             start: Some(input.start.eval(&defaults)),
             range: Range::ANY,
             role: Role::Input(i),
-            declared_type: None,
         });
     }
     for (id, name, vr, unit, description) in STANDARD_OUTPUTS {

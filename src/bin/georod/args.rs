@@ -12,6 +12,8 @@ pub struct Options {
     pub steps: Option<usize>,
     pub output: Option<String>,
     pub lib: Option<String>,
+    /// `fmu`: (platform, library file) of each `--binary PLATFORM=FILE`.
+    pub binaries: Vec<(String, String)>,
     /// Positional arguments (the scene file of `fmu` and `check`).
     pub positional: Vec<String>,
     /// `path`: largest arc length as a fraction of the rod length.
@@ -51,6 +53,7 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
         steps: None,
         output: None,
         lib: None,
+        binaries: Vec::new(),
         positional: Vec::new(),
         max_arc: None,
         imperfection: 0.0,
@@ -93,6 +96,13 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
             "--steps" => o.steps = Some(count(value()?)?),
             "--output" | "-o" => o.output = Some(value()?.clone()),
             "--lib" => o.lib = Some(value()?.clone()),
+            "--binary" => {
+                let v = value()?;
+                let (platform, file) = v.split_once('=').ok_or_else(|| {
+                    format!("--binary takes PLATFORM=FILE (linux64, win64, darwin64), not `{v}`")
+                })?;
+                o.binaries.push((platform.to_string(), file.to_string()));
+            }
             "--max-arc" => o.max_arc = Some(positive(flag, value()?)?),
             "--imperfection" => o.imperfection = number(value()?)?,
             "--load-name" => o.load_name = Some(value()?.clone()),

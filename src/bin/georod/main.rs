@@ -1,15 +1,15 @@
 //! `georod`: package a scene file into an FMU, or run a scene through the Rust core directly.
 mod args;
+mod fmu;
 mod modal;
 mod report;
 mod statics;
 
 use args::{load_scene, Options};
-use georod::packaging;
 use georod::scene::Scene;
 use georod::simulation::Simulation;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::ExitCode;
 use std::sync::Arc;
 use std::time::Instant;
@@ -18,9 +18,12 @@ use std::time::Instant;
 const COMMANDS: [(&str, &str); 7] = [
     (
         "fmu",
-        "fmu FILE.toml [-o OUT.fmu] [--lib LIB]
+        "fmu FILE.toml [-o OUT.fmu] [--lib LIB] [--binary PLATFORM=FILE]...
     package a scene file into an FMI 2.0 Co-Simulation FMU (default OUT: <target>/fmu/<name>.fmu
-    beside this executable's target folder; LIB: the georod library next to this executable);
+    beside this executable's target folder) with a library for each platform (linux64, win64,
+    darwin64): FILE, else the one scripts/build_fmus built in that target folder (LIB or the
+    library next to this executable for this platform); each is checked (format, architecture,
+    every FMI 2.0 function exported) and a platform left out is named with how to build it;
     a bad scene file is refused with the file, the key and what is allowed, and nothing is written",
     ),
     (
@@ -105,50 +108,6 @@ fn write_or_print(output: Option<&str>, text: &str) -> Result<(), String> {
             Ok(())
         }
     }
-}
-
-fn package(o: &Options) -> Result<(), String> {
-    let [file] = o.positional.as_slice() else {
-        return Err("fmu takes one scene file: georod fmu FILE.toml [-o OUT.fmu]".to_string());
-    };
-    let scene = Scene::load(file).map_err(|e| e.to_string())?;
-    let lib_path = match &o.lib {
-        Some(p) => PathBuf::from(p),
-        None => packaging::default_library()?,
-    };
-    let lib = std::fs::read(&lib_path).map_err(|e| {
-        format!(
-            "cannot read the FMU library {}: {e} (build it with `cargo build --release --lib`, \
-             or pass --lib PATH)",
-            lib_path.display()
-        )
-    })?;
-    let out = match &o.output {
-        Some(p) => PathBuf::from(p),
-        None => {
-            let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-            let target = exe
-                .parent()
-                .and_then(Path::parent)
-                .unwrap_or(Path::new("."));
-            target.join("fmu").join(format!("{}.fmu", scene.name))
-        }
-    };
-    if out.extension().is_none_or(|e| e != "fmu") {
-        return Err(format!(
-            "-o {}: the output must be a .fmu file",
-            out.display()
-        ));
-    }
-    let p = packaging::package(&scene, &lib, &out).map_err(|e| format!("{file}: {e}"))?;
-    println!(
-        "wrote {} ({} bytes, guid {}, {} variables)",
-        p.path.display(),
-        p.bytes,
-        p.guid,
-        p.variables
-    );
-    Ok(())
 }
 
 fn check(o: &Options) -> Result<(), String> {
@@ -315,7 +274,7 @@ fn run(args: &[String]) -> Result<(), Failure> {
     }
     check_command_line(command, &o).map_err(usage_error)?;
     match command.as_str() {
-        "fmu" => package(&o)?,
+        "fmu" => fmu::package(&o)?,
         "check" => check(&o)?,
         "simulate" => {
             let (step, stop) = (o.step.unwrap_or_default(), o.stop.unwrap_or_default());

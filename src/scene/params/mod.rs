@@ -20,8 +20,6 @@ use std::fmt;
 pub enum VarType {
     Real,
     Integer,
-    /// Read and written with the Integer functions (FMI 2.0, section 2.2.7).
-    Enumeration,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -95,7 +95,9 @@ const ALWAYS: [Standard; 8] = [
     Standard {
         name: INTEGRATOR,
         vr: 15,
-        var_type: VarType::Enumeration,
+        // An Integer, not an Enumeration: libcosim (and other FMI 2.0 hosts) cannot set an
+        // Enumeration variable; the description names the values.
+        var_type: VarType::Integer,
         variability: Variability::Fixed,
         unit: None,
         description: "Time integration scheme: 1 = midpoint rule (the paper's), 2 = \

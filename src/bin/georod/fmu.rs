@@ -1,0 +1,120 @@
+//! `georod fmu`: a scene file packaged with the library of every platform at hand.
+use crate::args::Options;
+use georod::packaging::binaries::Platform;
+use georod::packaging::{self, Library};
+use georod::scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// The platforms with their library files, and the platforms left without one.
+type Choice = (Vec<(Platform, PathBuf)>, Vec<Platform>);
+
+/// The library file of each platform: the `--binary` ones and `--lib` for this platform when
+/// any is given (only those: what was asked), otherwise what scripts/build_fmus built in
+/// `target` (this platform: else the library next to this executable). Platforms with none
+/// are returned apart.
+fn choose_libraries(o: &Options, target: &Path) -> Result<Choice, String> {
+    let mut chosen: Vec<(Platform, PathBuf)> = Vec::new();
+    for (name, file) in &o.binaries {
+        let platform = Platform::from_folder(name).map_err(|e| format!("--binary {e}"))?;
+        if chosen.iter().any(|(p, _)| *p == platform) {
+            return Err(format!("--binary {platform} given twice"));
+        }
+        chosen.push((platform, PathBuf::from(file)));
+    }
+    let host = packaging::host_platform();
+    if let Some(lib) = &o.lib {
+        let host = host.ok_or("--lib: this platform cannot run an FMU; use --binary")?;
+        if chosen.iter().any(|(p, _)| *p == host) {
+            return Err(format!(
+                "--lib and --binary {host}: give the {host} library once"
+            ));
+        }
+        chosen.push((host, PathBuf::from(lib)));
+    }
+    let explicit = !chosen.is_empty();
+    let mut missing = Vec::new();
+    for platform in Platform::ALL {
+        if chosen.iter().any(|(p, _)| *p == platform) {
+            continue;
+        }
+        if explicit {
+            missing.push(platform);
+            continue;
+        }
+        let mut candidates: Vec<PathBuf> = platform
+            .built_path()
+            .map(|p| target.join(p))
+            .into_iter()
+            .collect();
+        if host == Some(platform) {
+            candidates.push(packaging::default_library()?);
+        }
+        match candidates.into_iter().find(|p| p.is_file()) {
+            Some(path) => chosen.push((platform, path)),
+            None => missing.push(platform),
+        }
+    }
+    chosen.sort();
+    Ok((chosen, missing))
+}
+
+pub fn package(o: &Options) -> Result<(), String> {
+    let [file] = o.positional.as_slice() else {
+        return Err("fmu takes one scene file: georod fmu FILE.toml [-o OUT.fmu]".to_string());
+    };
+    let scene = Scene::load(file).map_err(|e| e.to_string())?;
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let target = exe
+        .parent()
+        .and_then(Path::parent)
+        .unwrap_or(Path::new("."))
+        .to_path_buf();
+    let (chosen, missing) = choose_libraries(o, &target)?;
+    if chosen.is_empty() {
+        return Err(format!(
+            "no platform library found: build one (scripts/build_fmus) or pass --binary \
+             PLATFORM=FILE (looked in {})",
+            target.display()
+        ));
+    }
+    let mut libraries = Vec::new();
+    for (platform, path) in &chosen {
+        let bytes = std::fs::read(path)
+            .map_err(|e| format!("cannot read the {platform} library {}: {e}", path.display()))?;
+        packaging::binaries::check_library(*platform, &bytes)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        libraries.push(Library {
+            platform: *platform,
+            bytes,
+        });
+    }
+    let out = match &o.output {
+        Some(p) => PathBuf::from(p),
+        None => target.join("fmu").join(format!("{}.fmu", scene.name)),
+    };
+    if out.extension().is_none_or(|e| e != "fmu") {
+        return Err(format!(
+            "-o {}: the output must be a .fmu file",
+            out.display()
+        ));
+    }
+    let p = packaging::package(&scene, &libraries, &out).map_err(|e| format!("{file}: {e}"))?;
+    println!(
+        "wrote {} ({} bytes, guid {}, {} variables)",
+        p.path.display(),
+        p.bytes,
+        p.guid,
+        p.variables
+    );
+    for (platform, path) in &chosen {
+        println!("  binaries/{platform}: {}", path.display());
+    }
+    for platform in missing {
+        eprintln!(
+            "georod fmu: {}: no {platform} library, binaries/{platform} left out: {}",
+            p.path.display(),
+            platform.how_to_build()
+        );
+    }
+    Ok(())
+}
