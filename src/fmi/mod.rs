@@ -25,7 +25,10 @@
 //!   stepping);
 //! - [`uri`]: `fmuResourceLocation` parsing.
 pub mod api;
+pub mod api3;
 pub mod experiment;
+pub mod ffi;
+pub mod ffi_states;
 pub mod fmu_state;
 pub mod instance;
 pub mod interface;
@@ -35,5 +38,6 @@ pub mod state_data;
 pub mod state_machine;
 pub mod state_registry;
 pub mod types;
+pub mod types3;
 pub mod uri;
 pub mod values;

@@ -3,7 +3,10 @@
 //! `resources/scene.toml` (the scene file, read again by the binary at instantiation) and
 //! `documentation/index.html`. Archives are reproducible: fixed entry order and timestamps.
 pub mod documentation;
+pub mod fmu3;
 pub mod model_description;
+pub mod model_description3;
+pub mod variables3;
 
 use crate::scene::Scene;
 use crate::simulation::Simulation;
@@ -107,13 +110,19 @@ fn write_zip(tmp: &Path, scene: &Scene, lib: &[u8], xml: &str, doc: &str) -> Res
 
 /// The library must be a shared library exporting the FMI functions.
 fn check_library(lib: &[u8]) -> Result<(), String> {
+    check_exports(lib, "fmi2Instantiate")
+}
+
+/// `lib` must be a shared library (ELF, PE or Mach-O) whose symbols include `entry`.
+pub(crate) fn check_exports(lib: &[u8], entry: &str) -> Result<(), String> {
     let shared =
         lib.starts_with(b"\x7fELF") || lib.starts_with(b"MZ") || lib.starts_with(&[0xcf, 0xfa]);
     if !shared {
         return Err("the FMU library is not a shared library".to_string());
     }
-    if !lib.windows(16).any(|w| w == b"fmi2Instantiate\0") {
-        return Err("the FMU library does not export fmi2Instantiate".to_string());
+    let symbol = format!("{entry}\0");
+    if !lib.windows(symbol.len()).any(|w| w == symbol.as_bytes()) {
+        return Err(format!("the FMU library does not export {entry}"));
     }
     Ok(())
 }

@@ -12,6 +12,8 @@ pub struct Options {
     pub steps: Option<usize>,
     pub output: Option<String>,
     pub lib: Option<String>,
+    /// `fmu`: the FMI version, 2 or 3.
+    pub fmi: u8,
     /// Positional arguments (the scene file of `fmu` and `check`).
     pub positional: Vec<String>,
     /// `path`: largest arc length as a fraction of the rod length.
@@ -49,6 +51,7 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
         steps: None,
         output: None,
         lib: None,
+        fmi: 2,
         positional: Vec::new(),
         max_arc: None,
         imperfection: 0.0,
@@ -90,6 +93,13 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
             "--steps" => o.steps = Some(count(value()?)?),
             "--output" | "-o" => o.output = Some(value()?.clone()),
             "--lib" => o.lib = Some(value()?.clone()),
+            "--fmi" => {
+                o.fmi = match value()?.as_str() {
+                    "2" | "2.0" => 2,
+                    "3" | "3.0" => 3,
+                    v => return Err(format!("{flag} {v}: the FMI version is 2 or 3")),
+                }
+            }
             "--max-arc" => o.max_arc = Some(positive(flag, value()?)?),
             "--imperfection" => o.imperfection = number(value()?)?,
             "--load-name" => o.load_name = Some(value()?.clone()),

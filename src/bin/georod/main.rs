@@ -17,9 +17,10 @@ use std::time::Instant;
 const COMMANDS: [(&str, &str); 7] = [
     (
         "fmu",
-        "fmu FILE.toml [-o OUT.fmu] [--lib LIB]
-    package a scene file into an FMI 2.0 Co-Simulation FMU (default OUT: <target>/fmu/<name>.fmu
-    beside this executable's target folder; LIB: the georod library next to this executable);
+        "fmu FILE.toml [-o OUT.fmu] [--lib LIB] [--fmi 2|3]
+    package a scene file into an FMI 2.0 (default) or 3.0 Co-Simulation FMU (default OUT:
+    <target>/fmu/<name>.fmu, or fmu3/ for FMI 3.0, beside this executable's target folder; LIB:
+    the georod library next to this executable, which exports both versions' functions);
     a bad scene file is refused with the file, the key and what is allowed, and nothing is written",
     ),
     (
@@ -152,7 +153,8 @@ fn package(o: &Options) -> Result<(), String> {
                 .parent()
                 .and_then(Path::parent)
                 .unwrap_or(Path::new("."));
-            target.join("fmu").join(format!("{}.fmu", scene.name))
+            let folder = if o.fmi == 3 { "fmu3" } else { "fmu" };
+            target.join(folder).join(format!("{}.fmu", scene.name))
         }
     };
     if out.extension().is_none_or(|e| e != "fmu") {
@@ -161,7 +163,12 @@ fn package(o: &Options) -> Result<(), String> {
             out.display()
         ));
     }
-    let p = packaging::package(&scene, &lib, &out).map_err(|e| format!("{file}: {e}"))?;
+    let p = if o.fmi == 3 {
+        packaging::fmu3::package3(&scene, &[(packaging::platform(), &lib)], &out)
+    } else {
+        packaging::package(&scene, &lib, &out)
+    }
+    .map_err(|e| format!("{file}: {e}"))?;
     println!(
         "wrote {} ({} bytes, guid {}, {} variables)",
         p.path.display(),
