@@ -36,7 +36,11 @@ fn version_life_cycle_and_step_out_arguments() {
             "no event, no termination, no early return"
         );
         assert!((last - (t + h)).abs() < 1e-12, "{last}");
-        assert_eq!(fmu.floats(&[TIME_VR], 1), [last], "the time the FMU reached");
+        assert_eq!(
+            fmu.floats(&[TIME_VR], 1),
+            [last],
+            "the time the FMU reached"
+        );
         t = last;
         i += 1;
     }
