@@ -106,7 +106,9 @@ pub fn package3(
         path: out.to_path_buf(),
         bytes,
         guid: md.token,
-        variables: super::variables3::variables3(&crate::scene::variables::variables(scene)).len(),
+        // `time` and the scene's variables, each array counted once.
+        variables: 1 + super::variables3::variables3(&crate::scene::variables::variables(scene))
+            .len(),
     })
 }
 
@@ -152,6 +154,35 @@ mod tests {
         assert!(check_library3(b"\x7fELF fmi2Instantiate\0").is_err());
         assert!(check_library3(b"\x7fELF fmi3InstantiateCoSimulation\0").is_ok());
         assert!(check_library3(b"text fmi3InstantiateCoSimulation\0").is_err());
+    }
+
+    #[test]
+    fn the_archive_holds_each_library_under_its_fmi3_platform_folder() {
+        let scene = Scene::load("scenes/BuckledBeam.toml").unwrap();
+        let lib: &[u8] = b"\x7fELF fmi3InstantiateCoSimulation\0";
+        let dll: &[u8] = b"MZ fmi3InstantiateCoSimulation\0";
+        let dir = std::env::temp_dir().join(format!("georod-fmu3-{}", std::process::id()));
+        let out = dir.join("BuckledBeam.fmu");
+        let packaged = package3(&scene, &[("linux64", lib), ("win64", dll)], &out).unwrap();
+        let mut zip = zip::ZipArchive::new(fs::File::open(&out).unwrap()).unwrap();
+        let names: Vec<String> = zip.file_names().map(str::to_string).collect();
+        for name in [
+            "modelDescription.xml",
+            "binaries/x86_64-linux/BuckledBeam.so",
+            "binaries/x86_64-windows/BuckledBeam.dll",
+            "resources/scene.toml",
+            "documentation/index.html",
+        ] {
+            assert!(names.contains(&name.to_string()), "{name} in {names:?}");
+        }
+        let mut xml = String::new();
+        std::io::Read::read_to_string(&mut zip.by_name("modelDescription.xml").unwrap(), &mut xml)
+            .unwrap();
+        assert!(xml.contains(r#"fmiVersion="3.0""#));
+        assert!(xml.contains(&packaged.guid));
+        assert!(package3(&scene, &[("amiga", lib)], &out).is_err());
+        assert!(package3(&scene, &[], &out).is_err());
+        let _ = fs::remove_dir_all(&dir);
     }
 
     #[test]
