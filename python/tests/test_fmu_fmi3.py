@@ -66,10 +66,10 @@ def test_validate_and_simulate(pair: Pair) -> None:
     assert pair.md3.fmiVersion == "3.0"
     assert pair.md3.guid == pair.md2.guid, "the instantiation token is the FMI 2.0 GUID"
     cs = pair.md3.coSimulation
-    assert cs.canGetAndSetFMUState and cs.canSerializeFMUState
+    assert cs.canGetAndSetFMUstate and cs.canSerializeFMUstate  # fmpy spells them so
     assert cs.canHandleVariableCommunicationStepSize
     assert not cs.hasEventMode and not cs.providesIntermediateUpdate
-    step = pair.md3.defaultExperiment.stepSize
+    step = float(pair.md3.defaultExperiment.stepSize)
     result = fmpy.simulate_fmu(str(pair.fmu3), stop_time=20 * step, output_interval=step)
     assert len(result) == 21
     points = [v for v in pair.md3.modelVariables if v.name == "shape_x"][0].dimensions[0].start
@@ -107,7 +107,7 @@ def test_fmi3_steps_bit_for_bit_like_fmi2_and_its_arrays_are_the_scalars(pair: P
     two, three = pair.slaves()
     vr2 = {v.name: v.valueReference for v in pair.md2.modelVariables}
     outputs3 = [v for v in pair.md3.modelVariables if v.causality == "output"]
-    step = pair.md3.defaultExperiment.stepSize
+    step = float(pair.md3.defaultExperiment.stepSize)
     try:
         t = 0.0
         for _ in range(20):
@@ -138,7 +138,7 @@ def test_state_round_trip(pair: Pair) -> None:
     _, three = pair.slaves()
     ident = [v for v in pair.md3.modelVariables if v.name == "shape_y"][0]
     n = int(ident.dimensions[0].start)
-    step = pair.md3.defaultExperiment.stepSize
+    step = float(pair.md3.defaultExperiment.stepSize)
     try:
         three.doStep(0.0, step)
         state = three.getFMUState()
