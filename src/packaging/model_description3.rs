@@ -1,6 +1,6 @@
 //! modelDescription.xml of a scene for FMI 3.0 Co-Simulation: the variables of the FMI 2.0
 //! document with the same names, value references, units, ranges and start values, except that
-//! every `shape_*` family is one array output ([`variables3`]). The instantiation token is the
+//! every `shape_*` family is one array output ([`variables3`](super::variables3)). The instantiation token is the
 //! FMI 2.0 document's GUID: both versions of a scene identify its scene file the same way, and
 //! the library checks it against the scene file in `resources/` whichever API instantiates it.
 use super::model_description::{

@@ -1,4 +1,4 @@
-//! The variables of a scene as FMI 3.0 declares them: the FMI 2.0 list ([`variables`]) with each
+//! The variables of a scene as FMI 3.0 declares them: the FMI 2.0 list ([`variables`](crate::scene::variables::variables)) with each
 //! family `shape_<field>[1]` ... `shape_<field>[N]` made one array `shape_<field>` of N elements.
 //! The grouping reads only the names, so every shape field the scene defines becomes an array.
 //! An array takes the value reference of its first element; every other variable keeps its

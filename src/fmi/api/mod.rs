@@ -8,8 +8,8 @@
 //! The functions are `unsafe extern "C"`: their safety contract is the FMI 2.0 standard's (valid
 //! pointers with the stated lengths); everything that can be checked cheaply is checked.
 //!
-//! This file holds the helpers every wrapper uses (`with_instance`, the pointer checks); the
-//! wrappers are grouped by concern and re-exported here, so each keeps its `fmi::api::` path:
+//! The call wrapper and pointer checks are shared with the FMI 3.0 API ([`super::ffi`]); this
+//! file turns their outcome into an `fmi2Status`. The wrappers are grouped by concern and re-exported here, so each keeps its `fmi::api::` path:
 //! - `lifecycle`: version and platform, debug logging, instantiate and free, experiment setup,
 //!   initialization mode, terminate, reset;
 //! - `values`: get and set Real/Integer/Boolean/String, input and output derivatives;

@@ -1,14 +1,14 @@
 //! The exported FMI 3.0 Co-Simulation functions: thin C wrappers around the same
 //! [`Instance`] as the FMI 2.0 API ([`super::api`]), with the same guarantees: the handle is
-//! checked, every call runs inside `catch_unwind` ([`super::ffi::call`]), every pointer is
+//! checked, every call runs inside `catch_unwind` (`fmi::ffi::call`), every pointer is
 //! checked, and a refusal is logged as `"<function>: why"`.
 //!
 //! What FMI 3.0 changes is done here: arrays (a value reference names a whole `shape_*` array,
-//! `nValues` counts elements; [`values`] maps them to the instance's scalars), the start time
+//! `nValues` counts elements; `values` maps them to the instance's scalars), the start time
 //! given to `fmi3EnterInitializationMode`, `fmi3DoStep`'s out-arguments, configuration mode,
 //! and the plain-text logger. The functions a Co-Simulation FMU without events, clocks or
 //! derivatives does not support are exported too and answer `fmi3Error` with a logged message
-//! ([`unsupported`]).
+//! (`unsupported`).
 //! - `lifecycle`: version, debug logging, instantiate and free, configuration and
 //!   initialization modes, terminate, reset;
 //! - `values`: get and set of every variable type;
