@@ -20,6 +20,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Callable
+from ctypes import CFUNCTYPE, POINTER, byref, c_bool, c_double, c_int, c_void_p
 from pathlib import Path
 
 import fmpy
@@ -54,7 +55,31 @@ def timed_steps(
     return time.perf_counter() - start
 
 
-def time_fmpy(unzipdir: str, steps: int, dt: float, with_get: bool) -> float:
+def c_do_step(slave: FMU2Slave | FMU3Slave) -> Callable[[float, float], object]:
+    """The library's own fmi2DoStep / fmi3DoStep through ctypes, with its out-arguments made
+    once: the two versions compared without fmpy's per-call wrapping (its FMU3Slave.doStep
+    makes four ctypes objects per call)."""
+    if isinstance(slave, FMU3Slave):
+        flag = POINTER(c_bool)
+        proto = CFUNCTYPE(
+            c_int, c_void_p, c_double, c_double, c_bool, flag, flag, flag, POINTER(c_double)
+        )
+        f3 = proto(("fmi3DoStep", slave.dll))
+        outs = (byref(c_bool()), byref(c_bool()), byref(c_bool()), byref(c_double()))
+        return lambda t, h: f3(slave.component, t, h, True, *outs)
+    f2 = CFUNCTYPE(c_int, c_void_p, c_double, c_double, c_int)(("fmi2DoStep", slave.dll))
+    return lambda t, h: f2(slave.component, t, h, 1)
+
+
+def run_steps(
+    slave: FMU2Slave | FMU3Slave, get: Callable, mode: str, out: list[int], steps: int, dt: float
+) -> float:
+    """mode: "step" (fmpy's doStep), "get" (and a read of `out` after each), "c" (c_do_step)."""
+    do_step = c_do_step(slave) if mode == "c" else slave.doStep
+    return timed_steps(do_step, get if mode == "get" else None, out, steps, dt)
+
+
+def time_fmpy(unzipdir: str, steps: int, dt: float, mode: str) -> float:
     md = fmpy.read_model_description(unzipdir)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     slave = FMU2Slave(
@@ -66,14 +91,13 @@ def time_fmpy(unzipdir: str, steps: int, dt: float, with_get: bool) -> float:
     slave.setInteger([vr["elements"]], [ELEMENTS])
     slave.enterInitializationMode()
     slave.exitInitializationMode()
-    get = slave.getReal if with_get else None
-    seconds = timed_steps(slave.doStep, get, [vr["w_mid"], vr["v_mid"]], steps, dt)
+    seconds = run_steps(slave, slave.getReal, mode, [vr["w_mid"], vr["v_mid"]], steps, dt)
     slave.terminate()
     slave.freeInstance()
     return seconds
 
 
-def time_fmpy3(unzipdir: str, steps: int, dt: float, with_get: bool) -> float:
+def time_fmpy3(unzipdir: str, steps: int, dt: float, mode: str) -> float:
     md = fmpy.read_model_description(unzipdir)
     vr = {v.name: v.valueReference for v in md.modelVariables}
     slave = FMU3Slave(
@@ -84,8 +108,7 @@ def time_fmpy3(unzipdir: str, steps: int, dt: float, with_get: bool) -> float:
     slave.setInt32([vr["elements"]], [ELEMENTS])
     slave.enterInitializationMode(startTime=0.0)
     slave.exitInitializationMode()
-    get = slave.getFloat64 if with_get else None
-    seconds = timed_steps(slave.doStep, get, [vr["w_mid"], vr["v_mid"]], steps, dt)
+    seconds = run_steps(slave, slave.getFloat64, mode, [vr["w_mid"], vr["v_mid"]], steps, dt)
     slave.terminate()
     slave.freeInstance()
     return seconds
@@ -165,10 +188,11 @@ def main() -> int:
         dir2 = fmpy.extract(str(FMU), unzipdir=f"{tmp}/2")
         dir3 = fmpy.extract(str(FMU3), unzipdir=f"{tmp}/3")
         best = args.repeat
-        fmi = min(time_fmpy(dir2, args.steps, args.dt, False) for _ in range(best))
-        fmi_get = min(time_fmpy(dir2, args.steps, args.dt, True) for _ in range(best))
-        fmi3 = min(time_fmpy3(dir3, args.steps, args.dt, False) for _ in range(best))
-        fmi3_get = min(time_fmpy3(dir3, args.steps, args.dt, True) for _ in range(best))
+        timed = {
+            (version, mode): min(time(d, args.steps, args.dt, mode) for _ in range(best))
+            for version, time, d in ((2, time_fmpy, dir2), (3, time_fmpy3, dir3))
+            for mode in ("c", "step", "get")
+        }
         shapes = [time_shape_reads(dir2, dir3, args.steps // 10 or 1) for _ in range(best)]
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -183,10 +207,12 @@ def main() -> int:
     print(f"{'path':<34} {'total [s]':>10} {'per step [us]':>14} {'ratio':>8}")
     rows = [
         ("Rust core (georod bench-steps)", core),
-        ("fmpy doStep", fmi),
-        ("fmpy doStep + getReal(2)", fmi_get),
-        ("fmpy fmi3DoStep", fmi3),
-        ("fmpy fmi3DoStep + getFloat64(2)", fmi3_get),
+        ("ctypes fmi2DoStep, args made once", timed[2, "c"]),
+        ("ctypes fmi3DoStep, args made once", timed[3, "c"]),
+        ("fmpy doStep", timed[2, "step"]),
+        ("fmpy doStep + getReal(2)", timed[2, "get"]),
+        ("fmpy fmi3DoStep", timed[3, "step"]),
+        ("fmpy fmi3DoStep + getFloat64(2)", timed[3, "get"]),
     ]
     for name, t in rows:
         if t is None:
