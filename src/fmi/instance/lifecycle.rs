@@ -91,7 +91,9 @@ impl Instance {
             }
             Err(Failure::Error(why)) | Err(Failure::Discard(why)) => {
                 self.enter(FmiState::Error);
-                error(format!("{why}; the instance is now in the error state (call fmi2Reset or fmi2FreeInstance)"))
+                error(format!(
+                    "{why}; the instance is now in the error state (reset or free it)"
+                ))
             }
         }
     }
