@@ -12,28 +12,6 @@ use georod::fmi::types::*;
 use georod::fmi::types3::*;
 use std::ffi::{c_void, CString};
 
-fn bits(fmu: &Fmu3) -> Vec<u64> {
-    let (_, layout) = layout(BEAM);
-    let vrs: Vec<u32> = layout
-        .variables
-        .iter()
-        .filter(|v| v.name.starts_with('E') || v.array)
-        .map(|v| v.vr)
-        .collect();
-    let n = vrs.iter().map(|&vr| layout.by_vr(vr).unwrap().len).sum();
-    fmu.floats(&vrs, n).iter().map(|x| x.to_bits()).collect()
-}
-
-fn run(fmu: &Fmu3, from: f64, n: usize) -> f64 {
-    let mut t = from;
-    for _ in 0..n {
-        let (s, last, _) = fmu.step(t, 1e-4);
-        assert_eq!(s, fmi3Status::OK, "{:?}", fmu.messages());
-        t = last;
-    }
-    t
-}
-
 #[test]
 fn refused_instantiations_return_null_with_a_message() {
     let (token, path) = resources3(BEAM);
@@ -360,58 +338,4 @@ fn the_logger_gets_plain_text_and_the_environment() {
     let pct = CString::new("log%s%n").unwrap();
     unsafe { fmi3SetDebugLogging(fmu.c, fmi3True, 1, &pct.as_ptr()) };
     assert!(fmu.messages().last().unwrap().text.contains("log%s%n"));
-}
-
-#[test]
-fn every_corrupt_or_truncated_state_is_refused_and_changes_nothing() {
-    let (fmu, twin) = (Fmu3::new(BEAM), Fmu3::new(BEAM));
-    fmu.init();
-    twin.init();
-    let t = run(&fmu, 0.0, 2);
-    run(&twin, 0.0, 2);
-    let mut keep: fmi3FMUState = std::ptr::null_mut();
-    let mut size = 0;
-    let mut good;
-    unsafe {
-        assert_eq!(fmi3GetFMUState(fmu.c, &mut keep), fmi3Status::OK);
-        assert_eq!(
-            fmi3SerializedFMUStateSize(fmu.c, keep, &mut size),
-            fmi3Status::OK
-        );
-        good = vec![0u8; size];
-        assert_eq!(
-            fmi3SerializeFMUState(fmu.c, keep, good.as_mut_ptr(), size),
-            fmi3Status::OK
-        );
-    }
-    let refused = |bytes: &[u8], what: String| {
-        let mut out = keep;
-        let s = unsafe { fmi3DeserializeFMUState(fmu.c, bytes.as_ptr(), bytes.len(), &mut out) };
-        assert_eq!(s, fmi3Status::Error, "{what} accepted");
-        assert_eq!(out, keep, "{what}: the slot is written only on success");
-        let msg = fmu.messages().pop().expect("a refusal is logged");
-        assert!(
-            msg.text.starts_with("fmi3DeserializeFMUState: "),
-            "{}",
-            msg.text
-        );
-    };
-    for at in 0..size {
-        for mask in [0x01u8, 0xff] {
-            let mut bad = good.clone();
-            bad[at] ^= mask;
-            refused(&bad, format!("byte {at} ^ {mask:#x}"));
-        }
-    }
-    for n in 0..size {
-        refused(&good[..n], format!("{n} of {size} bytes"));
-    }
-    good.push(0);
-    refused(&good, "one byte more".to_string());
-    assert_eq!(run(&fmu, t, 3).to_bits(), run(&twin, t, 3).to_bits());
-    assert_eq!(
-        bits(&fmu),
-        bits(&twin),
-        "the instance steps on like its untouched twin"
-    );
 }

@@ -169,3 +169,27 @@ impl Drop for Fmu3 {
         unsafe { fmi3FreeInstance(self.c) };
     }
 }
+
+/// The energies and the shape arrays of the beam, as bits (for exact comparisons).
+pub fn bits(fmu: &Fmu3) -> Vec<u64> {
+    let (_, layout) = layout(fmi_host::BEAM);
+    let vrs: Vec<u32> = layout
+        .variables
+        .iter()
+        .filter(|v| v.name.starts_with('E') || v.array)
+        .map(|v| v.vr)
+        .collect();
+    let n = vrs.iter().map(|&vr| layout.by_vr(vr).unwrap().len).sum();
+    fmu.floats(&vrs, n).iter().map(|x| x.to_bits()).collect()
+}
+
+/// Steps `n` times from `from`; returns the time reached.
+pub fn run(fmu: &Fmu3, from: f64, n: usize) -> f64 {
+    let mut t = from;
+    for _ in 0..n {
+        let (s, last, _) = fmu.step(t, 1e-4);
+        assert_eq!(s, fmi3Status::OK, "{:?}", fmu.messages());
+        t = last;
+    }
+    t
+}
