@@ -4,13 +4,11 @@
 //! `resources/` and `documentation/index.html`. Reproducible like the FMI 2.0 archive.
 use super::documentation::documentation;
 use super::model_description3::model_description3;
-use super::{check_exports, check_initial_state, Packaged, SCENE_RESOURCE};
+use super::{
+    check_exports, check_initial_state, write_archive, write_atomically, Packaged, SCENE_RESOURCE,
+};
 use crate::scene::Scene;
-use std::fs;
-use std::io::Write as _;
 use std::path::Path;
-use zip::write::SimpleFileOptions;
-use zip::{CompressionMethod, ZipWriter};
 
 /// FMI 2.0 platform folder -> FMI 3.0 platform tuple, and the library file suffix there.
 pub const PLATFORMS3: [(&str, &str, &str); 5] = [
@@ -77,13 +75,6 @@ pub fn package3(
     check_initial_state(scene)?;
     let md = model_description3(scene);
     let doc = documentation3(scene, &md.token);
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    }
-    let file_name = out
-        .file_name()
-        .ok_or_else(|| format!("{}: not a file path", out.display()))?;
-    let tmp = out.with_file_name(format!(".{}.tmp", file_name.to_string_lossy()));
     let resource = format!("resources/{SCENE_RESOURCE}");
     let mut entries: Vec<(&str, &[u8], bool)> =
         vec![("modelDescription.xml", md.xml.as_bytes(), false)];
@@ -94,14 +85,7 @@ pub fn package3(
     );
     entries.push((&resource, scene.source.as_bytes(), false));
     entries.push(("documentation/index.html", doc.as_bytes(), false));
-    if let Err(e) = write_archive(&tmp, &entries) {
-        let _ = fs::remove_file(&tmp);
-        return Err(e);
-    }
-    fs::rename(&tmp, out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let bytes = fs::metadata(out)
-        .map_err(|e| format!("{}: {e}", out.display()))?
-        .len();
+    let bytes = write_atomically(out, |tmp| write_archive(tmp, &entries))?;
     Ok(Packaged {
         path: out.to_path_buf(),
         bytes,
@@ -112,27 +96,6 @@ pub fn package3(
     })
 }
 
-/// A zip of `(path, bytes, executable)` entries, in this order, with fixed timestamps.
-fn write_archive(tmp: &Path, entries: &[(&str, &[u8], bool)]) -> Result<(), String> {
-    let io = |e: std::io::Error| format!("{}: {e}", tmp.display());
-    let zerr = |e: zip::result::ZipError| format!("{}: {e}", tmp.display());
-    let mut zip = ZipWriter::new(fs::File::create(tmp).map_err(io)?);
-    let text = SimpleFileOptions::default()
-        .compression_method(CompressionMethod::Deflated)
-        .unix_permissions(0o644);
-    for &(path, bytes, executable) in entries {
-        let options = if executable {
-            text.unix_permissions(0o755)
-        } else {
-            text
-        };
-        zip.start_file(path, options).map_err(zerr)?;
-        zip.write_all(bytes).map_err(io)?;
-    }
-    zip.finish().map_err(zerr)?;
-    Ok(())
-}
-
 /// The library must be a shared library exporting the FMI 3.0 Co-Simulation entry point.
 fn check_library3(lib: &[u8]) -> Result<(), String> {
     check_exports(lib, "fmi3InstantiateCoSimulation")
@@ -141,6 +104,7 @@ fn check_library3(lib: &[u8]) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::fs;
 
     #[test]
     fn every_fmi2_platform_maps_to_an_fmi3_tuple() {

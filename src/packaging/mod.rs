@@ -54,22 +54,7 @@ pub fn package(scene: &Scene, lib: &[u8], out: &Path) -> Result<Packaged, String
     check_initial_state(scene)?;
     let md = model_description::model_description(scene);
     let doc = documentation::documentation(scene, &md.guid);
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    }
-    let file_name = out
-        .file_name()
-        .ok_or_else(|| format!("{}: not a file path", out.display()))?;
-    let tmp = out.with_file_name(format!(".{}.tmp", file_name.to_string_lossy()));
-    let result = write_zip(&tmp, scene, lib, &md.xml, &doc);
-    if let Err(e) = result {
-        let _ = fs::remove_file(&tmp);
-        return Err(e);
-    }
-    fs::rename(&tmp, out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let bytes = fs::metadata(out)
-        .map_err(|e| format!("{}: {e}", out.display()))?
-        .len();
+    let bytes = write_atomically(out, |tmp| write_zip(tmp, scene, lib, &md.xml, &doc))?;
     Ok(Packaged {
         path: out.to_path_buf(),
         bytes,
@@ -78,15 +63,30 @@ pub fn package(scene: &Scene, lib: &[u8], out: &Path) -> Result<Packaged, String
     })
 }
 
+/// Writes `out` through a temporary file beside it, filled by `write` (on error nothing is
+/// left); returns the size written.
+pub(crate) fn write_atomically(
+    out: &Path,
+    write: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<u64, String> {
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    let file_name = out
+        .file_name()
+        .ok_or_else(|| format!("{}: not a file path", out.display()))?;
+    let tmp = out.with_file_name(format!(".{}.tmp", file_name.to_string_lossy()));
+    if let Err(e) = write(&tmp) {
+        let _ = fs::remove_file(&tmp);
+        return Err(e);
+    }
+    fs::rename(&tmp, out).map_err(|e| format!("{}: {e}", out.display()))?;
+    Ok(fs::metadata(out)
+        .map_err(|e| format!("{}: {e}", out.display()))?
+        .len())
+}
+
 fn write_zip(tmp: &Path, scene: &Scene, lib: &[u8], xml: &str, doc: &str) -> Result<(), String> {
-    let io = |e: std::io::Error| format!("{}: {e}", tmp.display());
-    let zerr = |e: zip::result::ZipError| format!("{}: {e}", tmp.display());
-    let file = fs::File::create(tmp).map_err(io)?;
-    let mut zip = ZipWriter::new(file);
-    let text = SimpleFileOptions::default()
-        .compression_method(CompressionMethod::Deflated)
-        .unix_permissions(0o644);
-    let binary = text.unix_permissions(0o755);
     let library = format!(
         "binaries/{}/{}{}",
         platform(),
@@ -94,14 +94,32 @@ fn write_zip(tmp: &Path, scene: &Scene, lib: &[u8], xml: &str, doc: &str) -> Res
         std::env::consts::DLL_SUFFIX
     );
     let resource = format!("resources/{SCENE_RESOURCE}");
-    let entries: [(&str, &[u8], SimpleFileOptions); 4] = [
-        ("modelDescription.xml", xml.as_bytes(), text),
-        (&library, lib, binary),
-        (&resource, scene.source.as_bytes(), text),
-        ("documentation/index.html", doc.as_bytes(), text),
-    ];
-    for (entry, bytes, options) in entries {
-        zip.start_file(entry, options).map_err(zerr)?;
+    write_archive(
+        tmp,
+        &[
+            ("modelDescription.xml", xml.as_bytes(), false),
+            (&library, lib, true),
+            (&resource, scene.source.as_bytes(), false),
+            ("documentation/index.html", doc.as_bytes(), false),
+        ],
+    )
+}
+
+/// A zip of `(path, bytes, executable)` entries, in this order, with fixed timestamps.
+pub(crate) fn write_archive(tmp: &Path, entries: &[(&str, &[u8], bool)]) -> Result<(), String> {
+    let io = |e: std::io::Error| format!("{}: {e}", tmp.display());
+    let zerr = |e: zip::result::ZipError| format!("{}: {e}", tmp.display());
+    let mut zip = ZipWriter::new(fs::File::create(tmp).map_err(io)?);
+    let text = SimpleFileOptions::default()
+        .compression_method(CompressionMethod::Deflated)
+        .unix_permissions(0o644);
+    for &(path, bytes, executable) in entries {
+        let options = if executable {
+            text.unix_permissions(0o755)
+        } else {
+            text
+        };
+        zip.start_file(path, options).map_err(zerr)?;
         zip.write_all(bytes).map_err(io)?;
     }
     zip.finish().map_err(zerr)?;
