@@ -4,6 +4,7 @@ its shape as arrays equal to the FMI 2.0 scalars, and round-trips its state."""
 
 from __future__ import annotations
 
+import ctypes
 import re
 import shutil
 from collections.abc import Iterator
@@ -20,6 +21,21 @@ from fmpy.validation import validate_fmu
 from helpers import SCENE_FILES
 
 NAMES = [f.stem for f in SCENE_FILES]
+#: Every function of the FMI 3.0 standard (fmi3FunctionTypes.h), which the library must export.
+FMI3_FUNCTIONS = """GetVersion SetDebugLogging InstantiateModelExchange InstantiateCoSimulation
+InstantiateScheduledExecution FreeInstance EnterInitializationMode ExitInitializationMode
+EnterEventMode Terminate Reset GetFloat32 GetFloat64 GetInt8 GetUInt8 GetInt16 GetUInt16 GetInt32
+GetUInt32 GetInt64 GetUInt64 GetBoolean GetString GetBinary GetClock SetFloat32 SetFloat64 SetInt8
+SetUInt8 SetInt16 SetUInt16 SetInt32 SetUInt32 SetInt64 SetUInt64 SetBoolean SetString SetBinary
+SetClock GetNumberOfVariableDependencies GetVariableDependencies GetFMUState SetFMUState
+FreeFMUState SerializedFMUStateSize SerializeFMUState DeserializeFMUState
+GetDirectionalDerivative GetAdjointDerivative EnterConfigurationMode ExitConfigurationMode
+GetIntervalDecimal GetIntervalFraction GetShiftDecimal GetShiftFraction SetIntervalDecimal
+SetIntervalFraction SetShiftDecimal SetShiftFraction EvaluateDiscreteStates UpdateDiscreteStates
+EnterContinuousTimeMode CompletedIntegratorStep SetTime SetContinuousStates
+GetContinuousStateDerivatives GetEventIndicators GetContinuousStates
+GetNominalsOfContinuousStates GetNumberOfEventIndicators GetNumberOfContinuousStates EnterStepMode
+GetOutputDerivatives DoStep ActivateModelPartition""".split()
 #: FMI 2.0 names of array elements: `shape_x[3]` -> ("shape_x", 3).
 ELEMENT = re.compile(r"^(shape_\w+)\[(\d+)\]$")
 
@@ -75,6 +91,14 @@ def test_validate_and_simulate(pair: Pair) -> None:
     points = [v for v in pair.md3.modelVariables if v.name == "shape_x"][0].dimensions[0].start
     assert result["shape_x"].shape == (21, int(points))
     assert np.all(np.isfinite(result["shape_x"]))
+
+
+def test_every_function_of_the_standard_is_exported(pair: Pair) -> None:
+    ident = pair.md3.coSimulation.modelIdentifier
+    lib = ctypes.CDLL(str(Path(pair.dir3) / "binaries" / "x86_64-linux" / f"{ident}.so"))
+    missing = [f"fmi3{name}" for name in FMI3_FUNCTIONS if not hasattr(lib, f"fmi3{name}")]
+    assert missing == []
+    assert (Path(pair.dir3) / "documentation" / "index.html").is_file()
 
 
 def test_same_names_and_every_shape_family_is_one_array(pair: Pair) -> None:
