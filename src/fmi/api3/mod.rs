@@ -63,3 +63,52 @@ fn with_instance_warning(
 ) -> fmi3Status {
     ffi::call(instance, func, f).into()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_panic_is_caught_and_answered_with_fmi3_error() {
+        let dir = std::env::temp_dir().join(format!("georod-api3-test-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let source = std::fs::read_to_string("scenes/BuckledBeam.toml").unwrap();
+        std::fs::write(dir.join(crate::packaging::SCENE_RESOURCE), &source).unwrap();
+        let scene = crate::scene::Scene::parse(&source, "BuckledBeam.toml").unwrap();
+        let token = crate::packaging::model_description3::model_description3(&scene).token;
+        let token = std::ffi::CString::new(token).unwrap();
+        let path = std::ffi::CString::new(format!("{}/", dir.display())).unwrap();
+        unsafe {
+            let c = fmi3InstantiateCoSimulation(
+                c"p".as_ptr(),
+                token.as_ptr(),
+                path.as_ptr(),
+                fmi3False,
+                fmi3False,
+                fmi3False,
+                fmi3False,
+                std::ptr::null(),
+                0,
+                std::ptr::null_mut(),
+                None,
+                None,
+            );
+            assert!(!c.is_null());
+            let status = with_instance(c, "fmi3Test", |_| panic!("boom"));
+            assert_eq!(status, fmi3Status::Error);
+            let inst = Instance::from_raw(c).unwrap();
+            assert_eq!(inst.state(), crate::fmi::state_machine::FmiState::Error);
+            assert_eq!(
+                fmi3Reset(c),
+                fmi3Status::OK,
+                "the error state allows a reset"
+            );
+            assert_eq!(
+                fmi3EnterInitializationMode(c, fmi3False, 0.0, 0.0, fmi3False, 0.0),
+                fmi3Status::OK
+            );
+            fmi3FreeInstance(c);
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
