@@ -92,6 +92,7 @@ const BAD: &[(&[&str], &[&str])] = &[
     (&["simulate", "--bogus"], &["unknown option `--bogus`"]),
     (&["simulate", "stray", "--step", "1e-4", "--stop", "1e-3"], &["unexpected argument `stray`"]),
     (&["fmu"], &["fmu takes one scene file"]),
+    (&["fmu", "scenes/BuckledBeam.toml", "--fmi", "4"], &["--fmi 4", "2 or 3"]),
     (&["check", "a.toml", "b.toml"], &["check takes one scene file"]),
     (&["nonsense"], &["unknown command `nonsense`"]),
     (&[], &["usage: georod COMMAND"]),

@@ -14,6 +14,7 @@ import fmpy
 import pytest
 
 from helpers import (
+    FMU3_DIR,
     FMU_DIR,
     GEOROD_CLI,
     RELEASE_DIR,
@@ -76,9 +77,16 @@ def pytest_make_collect_report(collector: pytest.Collector):  # noqa: ANN201
 @pytest.fixture(scope="session")
 def fmu_paths() -> dict[str, Path]:
     """target/fmu/<Scene>.fmu for every scene of scenes/; runs scripts/build_fmus once if the FMU
-    of any scene file (scenes/ and examples/, all of which it packages) is missing, older than the
-    release library or older than its scene file."""
-    if stale_fmus(SCENE_FILES, FMU_DIR, RELEASE_LIB):
+    of any scene file (scenes/ and examples/, all of which it packages), in either FMI version, is
+    missing, older than the release library or older than its scene file."""
+
+    def stale() -> list[str]:
+        return [
+            *stale_fmus(SCENE_FILES, FMU_DIR, RELEASE_LIB),
+            *(f"fmu3/{why}" for why in stale_fmus(SCENE_FILES, FMU3_DIR, RELEASE_LIB)),
+        ]
+
+    if stale():
         if not BUILD_FMUS.exists():
             pytest.fail(f"FMUs missing or stale and {BUILD_FMUS} does not exist")
         r = run_cmd([BUILD_FMUS], timeout=1200)
@@ -87,7 +95,7 @@ def fmu_paths() -> dict[str, Path]:
                 f"scripts/build_fmus failed ({r.returncode}):\n"
                 f"{r.stdout[-3000:]}\n{r.stderr[-3000:]}"
             )
-        left = stale_fmus(SCENE_FILES, FMU_DIR, RELEASE_LIB)
+        left = stale()
         if left:
             pytest.fail(f"scripts/build_fmus left FMUs out of date: {'; '.join(left)}")
     return {s: FMU_DIR / f"{s}.fmu" for s in SCENES}
@@ -106,6 +114,13 @@ def fmus(
         infos[scene] = FmuInfo.from_model_description(scene, path, unzipdir, md)
     yield infos
     shutil.rmtree(root, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def fmu3_paths(fmu_paths: dict[str, Path]) -> dict[Path, tuple[Path, Path]]:
+    """Every scene file (scenes/ and examples/) -> its (FMI 2.0, FMI 3.0) FMU, both up to date
+    (fmu_paths builds them)."""
+    return {f: (FMU_DIR / f"{f.stem}.fmu", FMU3_DIR / f"{f.stem}.fmu") for f in SCENE_FILES}
 
 
 @pytest.fixture(params=SCENES)

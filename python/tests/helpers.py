@@ -29,6 +29,8 @@ from fmpy.model_description import ModelDescription
 
 REPO = Path(__file__).resolve().parents[2]
 FMU_DIR = REPO / "target" / "fmu"
+#: The FMI 3.0 FMUs of the same scene files (scripts/build_fmus writes both versions).
+FMU3_DIR = REPO / "target" / "fmu3"
 RELEASE_DIR = REPO / "target" / "release"
 GEOROD_CLI = RELEASE_DIR / "georod"
 #: The paper's scenes, whose FMUs these tests exercise (scene files in scenes/).

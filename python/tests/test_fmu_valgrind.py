@@ -17,7 +17,7 @@ SCRIPT = REPO / "scripts" / "valgrind_fmu"
 
 @pytest.mark.usefixtures("fmu_paths")  # builds every scene's FMU when missing or stale
 def test_valgrind_clean() -> None:
-    """Every FMU of scenes/ and examples/ (the script's default list)."""
+    """Every FMU of scenes/ and examples/ (the script's default list), FMI 2.0 and 3.0."""
     missing = [tool for tool in ("valgrind", "gcc") if shutil.which(tool) is None]
     assert not missing, f"{', '.join(missing)} not on PATH: run scripts/install_test_deps"
     r = run_cmd([SCRIPT], timeout=600)
@@ -26,3 +26,4 @@ def test_valgrind_clean() -> None:
     )
     for scene in SCENE_FILES:
         assert f"== {scene.stem}: clean" in r.stdout
+        assert f"== {scene.stem} FMI 3.0: clean" in r.stdout

@@ -2,6 +2,7 @@
 //! re-checked, its variables with a value-reference index, and the GUID of the
 //! modelDescription.xml built from it (which must be the GUID the host passes: a scene file
 //! changed after packaging is refused).
+use crate::packaging::variables3::Layout3;
 use crate::packaging::{model_description, SCENE_RESOURCE};
 use crate::scene::variables::{self, Variable};
 use crate::scene::Scene;
@@ -13,6 +14,8 @@ pub struct Interface {
     pub scene: Arc<Scene>,
     pub variables: Vec<Variable>,
     by_vr: HashMap<u32, usize>,
+    /// The variables as FMI 3.0 declares them (shape families as arrays).
+    pub layout3: Layout3,
     pub guid: String,
 }
 
@@ -27,6 +30,7 @@ impl Interface {
             .collect();
         Interface {
             scene: Arc::new(scene),
+            layout3: Layout3::new(&variables),
             variables,
             by_vr,
             guid,

@@ -9,6 +9,7 @@
 //! - the logger is always called as `logger(env, instanceName, status, category, "%s", text)`:
 //!   the text is the variadic argument, never the format, so a `%` anywhere is harmless.
 use super::types::{fmi2CallbackLogger, fmi2ComponentEnvironment, fmi2Status};
+use super::types3::{fmi3LogMessageCallback, fmi3Status};
 use std::ffi::{CStr, CString};
 
 /// The log categories of the FMU, `(name, description)`, as declared in modelDescription.xml.
@@ -35,9 +36,16 @@ impl Category {
     }
 }
 
+/// The host's logging function: FMI 2.0's (a printf format) or FMI 3.0's (plain text).
+#[derive(Clone, Copy)]
+pub enum Callback {
+    Fmi2(fmi2CallbackLogger),
+    Fmi3(fmi3LogMessageCallback),
+}
+
 /// Where an instance's messages go.
 pub struct Logger {
-    callback: Option<fmi2CallbackLogger>,
+    callback: Option<Callback>,
     /// Handed back unchanged (even NULL) with every message.
     env: fmi2ComponentEnvironment,
     /// Our own copy of `instanceName`: the host may free its string after `fmi2Instantiate`.
@@ -47,7 +55,7 @@ pub struct Logger {
 
 impl Logger {
     pub fn new(
-        callback: Option<fmi2CallbackLogger>,
+        callback: Option<Callback>,
         env: fmi2ComponentEnvironment,
         name: &str,
         logging_on: bool,
@@ -136,21 +144,37 @@ impl Logger {
     }
 
     fn send(&self, status: fmi2Status, category: Category, text: &str) {
-        if let Some(logger) = self.callback {
-            let text = to_cstring(text);
-            // SAFETY: the host promised a valid logger; every pointer is a live NUL-terminated
-            // string for the duration of the call, and "%s" consumes exactly one `char*`.
-            unsafe {
+        let text = to_cstring(text);
+        let category = category.c_name().as_ptr();
+        // SAFETY: the host promised a valid logger; every pointer is a live NUL-terminated
+        // string for the duration of the call, and "%s" consumes exactly one `char*`.
+        match self.callback {
+            Some(Callback::Fmi2(logger)) => unsafe {
                 logger(
                     self.env,
                     self.name.as_ptr(),
                     status,
-                    category.c_name().as_ptr(),
+                    category,
                     c"%s".as_ptr(),
                     text.as_ptr(),
                 )
-            };
+            },
+            Some(Callback::Fmi3(logger)) => unsafe {
+                logger(self.env, fmi3_status(status), category, text.as_ptr())
+            },
+            None => {}
         }
+    }
+}
+
+/// The FMI 3.0 status of a message (FMI 3.0 has no `Pending`, which is never logged).
+fn fmi3_status(status: fmi2Status) -> fmi3Status {
+    match status {
+        fmi2Status::OK | fmi2Status::Pending => fmi3Status::OK,
+        fmi2Status::Warning => fmi3Status::Warning,
+        fmi2Status::Discard => fmi3Status::Discard,
+        fmi2Status::Error => fmi3Status::Error,
+        fmi2Status::Fatal => fmi3Status::Fatal,
     }
 }
 

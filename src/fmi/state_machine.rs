@@ -14,10 +14,13 @@ pub enum FmiState {
     StepCanceled,
     Terminated,
     Error,
+    /// FMI 3.0 only (`fmi3EnterConfigurationMode`); last, so the serialized indices of the
+    /// others stay as they were.
+    ConfigurationMode,
 }
 
 impl FmiState {
-    const ALL: [FmiState; 7] = [
+    const ALL: [FmiState; 8] = [
         FmiState::Instantiated,
         FmiState::InitializationMode,
         FmiState::StepComplete,
@@ -25,6 +28,7 @@ impl FmiState {
         FmiState::StepCanceled,
         FmiState::Terminated,
         FmiState::Error,
+        FmiState::ConfigurationMode,
     ];
 
     pub(crate) fn bit(self) -> u16 {
@@ -40,6 +44,7 @@ impl FmiState {
             FmiState::StepCanceled => "stepCanceled",
             FmiState::Terminated => "terminated",
             FmiState::Error => "error",
+            FmiState::ConfigurationMode => "configurationMode",
         }
     }
 }
@@ -54,8 +59,9 @@ pub mod mask {
     const SCAN: u16 = 1 << StepCanceled as u16;
     const T: u16 = 1 << Terminated as u16;
     const E: u16 = 1 << Error as u16;
+    const CM: u16 = 1 << ConfigurationMode as u16;
 
-    pub const ANY: u16 = I | IM | SC | SF | SCAN | T | E;
+    pub const ANY: u16 = I | IM | SC | SF | SCAN | T | E | CM;
     pub const SETUP_EXPERIMENT: u16 = I;
     pub const ENTER_INITIALIZATION: u16 = I;
     pub const EXIT_INITIALIZATION: u16 = IM;
@@ -71,6 +77,9 @@ pub mod mask {
     /// Only `stepInProgress`, which this FMU never enters.
     pub const CANCEL_STEP: u16 = 0;
     pub const STATUS: u16 = SC | SF | SCAN | T;
+    /// FMI 3.0: configuration mode is entered from `instantiated` and left back to it.
+    pub const ENTER_CONFIGURATION: u16 = I;
+    pub const EXIT_CONFIGURATION: u16 = CM;
 }
 
 pub(crate) fn state_list(mask: u16) -> String {

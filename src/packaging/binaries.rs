@@ -26,6 +26,17 @@ impl Platform {
         }
     }
 
+    /// The folder under `binaries/` in an FMI 3.0 FMU (its platform tuple). A darwin64 library
+    /// goes under `x86_64-darwin`; FMI 3.0 names Apple silicon `aarch64-darwin`, which an
+    /// arm64 or universal library would also fit: not packed there yet.
+    pub fn fmi3_folder(self) -> &'static str {
+        match self {
+            Platform::Linux64 => "x86_64-linux",
+            Platform::Win64 => "x86_64-windows",
+            Platform::Darwin64 => "x86_64-darwin",
+        }
+    }
+
     /// The file name ending of a shared library on this platform.
     pub fn suffix(self) -> &'static str {
         match self {
@@ -125,8 +136,111 @@ pub const FMI2_FUNCTIONS: [&str; 34] = [
     "fmi2GetStringStatus",
 ];
 
-/// Checks that `lib` is a shared library of `platform` exporting every FMI 2.0 function.
-pub fn check_library(platform: Platform, lib: &[u8]) -> Result<(), String> {
+/// Every function of the FMI 3.0 standard (`fmi3FunctionTypes.h`), which the library exports
+/// (those a co-simulation FMU need not support answer `fmi3Error`).
+pub const FMI3_FUNCTIONS: [&str; 75] = [
+    "fmi3GetVersion",
+    "fmi3SetDebugLogging",
+    "fmi3InstantiateModelExchange",
+    "fmi3InstantiateCoSimulation",
+    "fmi3InstantiateScheduledExecution",
+    "fmi3FreeInstance",
+    "fmi3EnterInitializationMode",
+    "fmi3ExitInitializationMode",
+    "fmi3EnterEventMode",
+    "fmi3Terminate",
+    "fmi3Reset",
+    "fmi3GetFloat32",
+    "fmi3GetFloat64",
+    "fmi3GetInt8",
+    "fmi3GetUInt8",
+    "fmi3GetInt16",
+    "fmi3GetUInt16",
+    "fmi3GetInt32",
+    "fmi3GetUInt32",
+    "fmi3GetInt64",
+    "fmi3GetUInt64",
+    "fmi3GetBoolean",
+    "fmi3GetString",
+    "fmi3GetBinary",
+    "fmi3GetClock",
+    "fmi3SetFloat32",
+    "fmi3SetFloat64",
+    "fmi3SetInt8",
+    "fmi3SetUInt8",
+    "fmi3SetInt16",
+    "fmi3SetUInt16",
+    "fmi3SetInt32",
+    "fmi3SetUInt32",
+    "fmi3SetInt64",
+    "fmi3SetUInt64",
+    "fmi3SetBoolean",
+    "fmi3SetString",
+    "fmi3SetBinary",
+    "fmi3SetClock",
+    "fmi3GetNumberOfVariableDependencies",
+    "fmi3GetVariableDependencies",
+    "fmi3GetFMUState",
+    "fmi3SetFMUState",
+    "fmi3FreeFMUState",
+    "fmi3SerializedFMUStateSize",
+    "fmi3SerializeFMUState",
+    "fmi3DeserializeFMUState",
+    "fmi3GetDirectionalDerivative",
+    "fmi3GetAdjointDerivative",
+    "fmi3EnterConfigurationMode",
+    "fmi3ExitConfigurationMode",
+    "fmi3GetIntervalDecimal",
+    "fmi3GetIntervalFraction",
+    "fmi3GetShiftDecimal",
+    "fmi3GetShiftFraction",
+    "fmi3SetIntervalDecimal",
+    "fmi3SetIntervalFraction",
+    "fmi3SetShiftDecimal",
+    "fmi3SetShiftFraction",
+    "fmi3EvaluateDiscreteStates",
+    "fmi3UpdateDiscreteStates",
+    "fmi3EnterContinuousTimeMode",
+    "fmi3CompletedIntegratorStep",
+    "fmi3SetTime",
+    "fmi3SetContinuousStates",
+    "fmi3GetContinuousStateDerivatives",
+    "fmi3GetEventIndicators",
+    "fmi3GetContinuousStates",
+    "fmi3GetNominalsOfContinuousStates",
+    "fmi3GetNumberOfEventIndicators",
+    "fmi3GetNumberOfContinuousStates",
+    "fmi3EnterStepMode",
+    "fmi3GetOutputDerivatives",
+    "fmi3DoStep",
+    "fmi3ActivateModelPartition",
+];
+
+/// The FMI versions a library serves, by the functions it must export.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Api {
+    Fmi2,
+    Fmi3,
+}
+
+impl Api {
+    fn functions(self) -> &'static [&'static str] {
+        match self {
+            Api::Fmi2 => &FMI2_FUNCTIONS,
+            Api::Fmi3 => &FMI3_FUNCTIONS,
+        }
+    }
+
+    fn name(self) -> &'static str {
+        match self {
+            Api::Fmi2 => "FMI 2.0",
+            Api::Fmi3 => "FMI 3.0",
+        }
+    }
+}
+
+/// Checks that `lib` is a shared library of `platform` exporting every function of `api`.
+pub fn check_library(platform: Platform, lib: &[u8], api: Api) -> Result<(), String> {
     let wrong = |found: String| {
         format!(
             "not a {platform} library: expected {}, found {found}",
@@ -138,14 +252,22 @@ pub fn check_library(platform: Platform, lib: &[u8]) -> Result<(), String> {
         // A universal library: every slice must pass.
         let fat = MachOFatFile32::parse(lib).map_err(|e| wrong(e.to_string()))?;
         for arch in fat.arches() {
-            check_library(platform, arch.data(lib).map_err(|e| wrong(e.to_string()))?)?;
+            check_library(
+                platform,
+                arch.data(lib).map_err(|e| wrong(e.to_string()))?,
+                api,
+            )?;
         }
         return Ok(());
     }
     if platform == Platform::Darwin64 && kind == FileKind::MachOFat64 {
         let fat = MachOFatFile64::parse(lib).map_err(|e| wrong(e.to_string()))?;
         for arch in fat.arches() {
-            check_library(platform, arch.data(lib).map_err(|e| wrong(e.to_string()))?)?;
+            check_library(
+                platform,
+                arch.data(lib).map_err(|e| wrong(e.to_string()))?,
+                api,
+            )?;
         }
         return Ok(());
     }
@@ -180,14 +302,15 @@ pub fn check_library(platform: Platform, lib: &[u8]) -> Result<(), String> {
             }
         })
         .collect();
-    let missing: Vec<&str> = FMI2_FUNCTIONS
-        .into_iter()
+    let missing: Vec<&str> = (api.functions().iter())
         .filter(|f| !names.contains(&f.as_bytes()))
+        .copied()
         .collect();
     if !missing.is_empty() {
         return Err(format!(
-            "the {platform} library does not export {} of the FMI 2.0 functions: {}",
+            "the {platform} library does not export {} of the {} functions: {}",
             missing.len(),
+            api.name(),
             missing.join(", ")
         ));
     }
@@ -209,7 +332,7 @@ mod tests {
 
     #[test]
     fn not_an_object_file_is_refused() {
-        let e = check_library(Platform::Win64, b"[geometry]\nshape = 1\n").unwrap_err();
+        let e = check_library(Platform::Win64, b"[geometry]\nshape = 1\n", Api::Fmi2).unwrap_err();
         assert_eq!(
             e,
             "not a win64 library: expected a PE32+ DLL for x86_64, found no known object format"
@@ -221,12 +344,12 @@ mod tests {
     fn an_elf_without_fmi_functions_or_of_another_platform_is_refused() {
         // This test executable: an x86_64 ELF that exports no FMI function.
         let me = std::fs::read(std::env::current_exe().unwrap()).unwrap();
-        let e = check_library(Platform::Linux64, &me).unwrap_err();
+        let e = check_library(Platform::Linux64, &me, Api::Fmi2).unwrap_err();
         assert!(
             e.contains("not a shared library") || e.contains("does not export 34 of"),
             "{e}"
         );
-        let e = check_library(Platform::Darwin64, &me).unwrap_err();
+        let e = check_library(Platform::Darwin64, &me, Api::Fmi2).unwrap_err();
         assert!(
             e.starts_with("not a darwin64 library: expected a Mach-O"),
             "{e}"

@@ -2,10 +2,14 @@
 //! the scene), `binaries/<platform>/<name><suffix>` (the one georod cdylib of each platform,
 //! whatever the scene: linux64, win64, darwin64, see [`binaries`]),
 //! `resources/scene.toml` (the scene file, read again by the binary at instantiation) and
-//! `documentation/index.html`. Archives are reproducible: fixed entry order and timestamps.
+//! `documentation/index.html`; or into an FMI 3.0 one ([`fmu3`]) with the same libraries.
+//! Archives are reproducible: fixed entry order and timestamps.
 pub mod binaries;
 pub mod documentation;
+pub mod fmu3;
 pub mod model_description;
+pub mod model_description3;
+pub mod variables3;
 
 use crate::scene::Scene;
 use crate::simulation::Simulation;
@@ -53,9 +57,9 @@ pub struct Library {
     pub bytes: Vec<u8>,
 }
 
-/// Writes the FMU of `scene` with `libraries` (at least one, one per platform) to `out`
-/// (through a temporary file: on error nothing is left).
-pub fn package(scene: &Scene, libraries: &[Library], out: &Path) -> Result<Packaged, String> {
+/// Checks `libraries`: at least one, one per platform, each a library of its platform that
+/// exports every function of `api`.
+pub(crate) fn check_libraries(libraries: &[Library], api: binaries::Api) -> Result<(), String> {
     if libraries.is_empty() {
         return Err("no platform library to pack".to_string());
     }
@@ -63,27 +67,19 @@ pub fn package(scene: &Scene, libraries: &[Library], out: &Path) -> Result<Packa
         if libraries[..i].iter().any(|l| l.platform == lib.platform) {
             return Err(format!("two {} libraries given", lib.platform));
         }
-        binaries::check_library(lib.platform, &lib.bytes)?;
+        binaries::check_library(lib.platform, &lib.bytes, api)?;
     }
+    Ok(())
+}
+
+/// Writes the FMU of `scene` with `libraries` (at least one, one per platform) to `out`
+/// (through a temporary file: on error nothing is left).
+pub fn package(scene: &Scene, libraries: &[Library], out: &Path) -> Result<Packaged, String> {
+    check_libraries(libraries, binaries::Api::Fmi2)?;
     check_initial_state(scene)?;
     let md = model_description::model_description(scene);
     let doc = documentation::documentation(scene, &md.guid);
-    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-    }
-    let file_name = out
-        .file_name()
-        .ok_or_else(|| format!("{}: not a file path", out.display()))?;
-    let tmp = out.with_file_name(format!(".{}.tmp", file_name.to_string_lossy()));
-    let result = write_zip(&tmp, scene, libraries, &md.xml, &doc);
-    if let Err(e) = result {
-        let _ = fs::remove_file(&tmp);
-        return Err(e);
-    }
-    fs::rename(&tmp, out).map_err(|e| format!("{}: {e}", out.display()))?;
-    let bytes = fs::metadata(out)
-        .map_err(|e| format!("{}: {e}", out.display()))?
-        .len();
+    let bytes = write_fmu(out, scene, libraries, Platform::folder, &md.xml, &doc)?;
     Ok(Packaged {
         path: out.to_path_buf(),
         bytes,
@@ -92,41 +88,78 @@ pub fn package(scene: &Scene, libraries: &[Library], out: &Path) -> Result<Packa
     })
 }
 
-fn write_zip(
-    tmp: &Path,
+/// The archive of an FMU at `out`: `xml`, each library under `binaries/<folder>/`, the scene
+/// file, the documentation page `doc`; returns its size.
+pub(crate) fn write_fmu(
+    out: &Path,
     scene: &Scene,
     libraries: &[Library],
+    folder: fn(Platform) -> &'static str,
     xml: &str,
     doc: &str,
-) -> Result<(), String> {
-    let io = |e: std::io::Error| format!("{}: {e}", tmp.display());
-    let zerr = |e: zip::result::ZipError| format!("{}: {e}", tmp.display());
-    let file = fs::File::create(tmp).map_err(io)?;
-    let mut zip = ZipWriter::new(file);
-    let text = SimpleFileOptions::default()
-        .compression_method(CompressionMethod::Deflated)
-        .unix_permissions(0o644);
-    let binary = text.unix_permissions(0o755);
+) -> Result<u64, String> {
     // Fixed order (platforms sorted) for reproducible archives.
     let mut sorted: Vec<&Library> = libraries.iter().collect();
     sorted.sort_by_key(|l| l.platform);
-    let paths: Vec<String> = sorted
-        .iter()
+    let paths: Vec<String> = (sorted.iter())
         .map(|l| {
-            let p = l.platform;
-            format!("binaries/{}/{}{}", p.folder(), scene.name, p.suffix())
+            format!(
+                "binaries/{}/{}{}",
+                folder(l.platform),
+                scene.name,
+                l.platform.suffix()
+            )
         })
         .collect();
     let resource = format!("resources/{SCENE_RESOURCE}");
-    let mut entries: Vec<(&str, &[u8], SimpleFileOptions)> =
-        vec![("modelDescription.xml", xml.as_bytes(), text)];
+    let mut entries: Vec<(&str, &[u8], bool)> =
+        vec![("modelDescription.xml", xml.as_bytes(), false)];
     for (path, lib) in paths.iter().zip(&sorted) {
-        entries.push((path, &lib.bytes, binary));
+        entries.push((path, &lib.bytes, true));
     }
-    entries.push((&resource, scene.source.as_bytes(), text));
-    entries.push(("documentation/index.html", doc.as_bytes(), text));
-    for (entry, bytes, options) in entries {
-        zip.start_file(entry, options).map_err(zerr)?;
+    entries.push((&resource, scene.source.as_bytes(), false));
+    entries.push(("documentation/index.html", doc.as_bytes(), false));
+    write_atomically(out, |tmp| write_archive(tmp, &entries))
+}
+
+/// Writes `out` through a temporary file beside it, filled by `write` (on error nothing is
+/// left); returns the size written.
+pub(crate) fn write_atomically(
+    out: &Path,
+    write: impl FnOnce(&Path) -> Result<(), String>,
+) -> Result<u64, String> {
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    }
+    let file_name = out
+        .file_name()
+        .ok_or_else(|| format!("{}: not a file path", out.display()))?;
+    let tmp = out.with_file_name(format!(".{}.tmp", file_name.to_string_lossy()));
+    if let Err(e) = write(&tmp) {
+        let _ = fs::remove_file(&tmp);
+        return Err(e);
+    }
+    fs::rename(&tmp, out).map_err(|e| format!("{}: {e}", out.display()))?;
+    Ok(fs::metadata(out)
+        .map_err(|e| format!("{}: {e}", out.display()))?
+        .len())
+}
+
+/// A zip of `(path, bytes, executable)` entries, in this order, with fixed timestamps.
+pub(crate) fn write_archive(tmp: &Path, entries: &[(&str, &[u8], bool)]) -> Result<(), String> {
+    let io = |e: std::io::Error| format!("{}: {e}", tmp.display());
+    let zerr = |e: zip::result::ZipError| format!("{}: {e}", tmp.display());
+    let mut zip = ZipWriter::new(fs::File::create(tmp).map_err(io)?);
+    let text = SimpleFileOptions::default()
+        .compression_method(CompressionMethod::Deflated)
+        .unix_permissions(0o644);
+    for &(path, bytes, executable) in entries {
+        let options = if executable {
+            text.unix_permissions(0o755)
+        } else {
+            text
+        };
+        zip.start_file(path, options).map_err(zerr)?;
         zip.write_all(bytes).map_err(io)?;
     }
     zip.finish().map_err(zerr)?;

@@ -88,7 +88,7 @@ pub fn guid_text(hash: u128) -> String {
 }
 
 /// A Real value as an `xs:double` literal (shortest round-trip form, e.g. `12000.0`, `1e-6`).
-fn real(x: f64) -> String {
+pub(crate) fn real(x: f64) -> String {
     format!("{x:?}")
 }
 
@@ -98,7 +98,7 @@ pub struct ModelDescription {
     pub guid: String,
 }
 
-fn number(v: &Variable, x: f64) -> String {
+pub(crate) fn number(v: &Variable, x: f64) -> String {
     match v.var_type {
         VarType::Real => real(x),
         VarType::Integer => format!("{}", x as i64),
@@ -125,56 +125,9 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
         escape(&scene.name)
     );
 
-    let mut units: Vec<&str> = Vec::new();
-    for v in &vars {
-        if let Some(u) = v.unit.as_deref() {
-            if !units.contains(&u) {
-                units.push(u);
-            }
-        }
-    }
-    if !units.is_empty() {
-        let _ = writeln!(w, "  <UnitDefinitions>");
-        for u in &units {
-            match base_unit(u) {
-                Some(exps) => {
-                    let attrs: String = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"]
-                        .iter()
-                        .zip(exps)
-                        .filter(|(_, e)| *e != 0)
-                        .map(|(n, e)| format!(r#" {n}="{e}""#))
-                        .collect();
-                    let _ = writeln!(w, r#"    <Unit name="{}">"#, escape(u));
-                    let _ = writeln!(w, "      <BaseUnit{attrs}/>");
-                    let _ = writeln!(w, "    </Unit>");
-                }
-                None => {
-                    let _ = writeln!(w, r#"    <Unit name="{}"/>"#, escape(u));
-                }
-            }
-        }
-        let _ = writeln!(w, "  </UnitDefinitions>");
-    }
+    unit_definitions(w, &vars);
 
-    let _ = writeln!(w, "  <LogCategories>");
-    for (name, desc) in LOG_CATEGORIES {
-        let _ = writeln!(
-            w,
-            r#"    <Category name="{}" description="{}"/>"#,
-            name,
-            escape(desc)
-        );
-    }
-    let _ = writeln!(w, "  </LogCategories>");
-
-    let e = scene.experiment;
-    let _ = writeln!(
-        w,
-        r#"  <DefaultExperiment startTime="{}" stopTime="{}" stepSize="{}"/>"#,
-        real(e.start),
-        real(e.stop),
-        real(e.step)
-    );
+    log_categories_and_experiment(w, scene);
 
     let _ = writeln!(w, "  <ModelVariables>");
     let mut outputs = Vec::new();
@@ -241,4 +194,61 @@ pub fn model_description(scene: &Scene) -> ModelDescription {
     let guid = guid_text(fnv1a_128(format!("{x}\n{}", scene.source).as_bytes()));
     let xml = x.replacen(r#"guid="""#, &format!(r#"guid="{guid}""#), 1);
     ModelDescription { xml, guid }
+}
+
+/// `<UnitDefinitions>` of the units `vars` use (the same element in FMI 2.0 and 3.0).
+pub(crate) fn unit_definitions(w: &mut String, vars: &[Variable]) {
+    let mut units: Vec<&str> = Vec::new();
+    for v in vars {
+        if let Some(u) = v.unit.as_deref() {
+            if !units.contains(&u) {
+                units.push(u);
+            }
+        }
+    }
+    if !units.is_empty() {
+        let _ = writeln!(w, "  <UnitDefinitions>");
+        for u in &units {
+            match base_unit(u) {
+                Some(exps) => {
+                    let attrs: String = ["kg", "m", "s", "A", "K", "mol", "cd", "rad"]
+                        .iter()
+                        .zip(exps)
+                        .filter(|(_, e)| *e != 0)
+                        .map(|(n, e)| format!(r#" {n}="{e}""#))
+                        .collect();
+                    let _ = writeln!(w, r#"    <Unit name="{}">"#, escape(u));
+                    let _ = writeln!(w, "      <BaseUnit{attrs}/>");
+                    let _ = writeln!(w, "    </Unit>");
+                }
+                None => {
+                    let _ = writeln!(w, r#"    <Unit name="{}"/>"#, escape(u));
+                }
+            }
+        }
+        let _ = writeln!(w, "  </UnitDefinitions>");
+    }
+}
+
+/// `<LogCategories>` and `<DefaultExperiment>` (the same elements in FMI 2.0 and 3.0).
+pub(crate) fn log_categories_and_experiment(w: &mut String, scene: &Scene) {
+    let _ = writeln!(w, "  <LogCategories>");
+    for (name, desc) in LOG_CATEGORIES {
+        let _ = writeln!(
+            w,
+            r#"    <Category name="{}" description="{}"/>"#,
+            name,
+            escape(desc)
+        );
+    }
+    let _ = writeln!(w, "  </LogCategories>");
+
+    let e = scene.experiment;
+    let _ = writeln!(
+        w,
+        r#"  <DefaultExperiment startTime="{}" stopTime="{}" stepSize="{}"/>"#,
+        real(e.start),
+        real(e.stop),
+        real(e.step)
+    );
 }

@@ -14,6 +14,8 @@ pub struct Options {
     pub lib: Option<String>,
     /// `fmu`: (platform, library file) of each `--binary PLATFORM=FILE`.
     pub binaries: Vec<(String, String)>,
+    /// `fmu`: the FMI version, 2 or 3.
+    pub fmi: u8,
     /// Positional arguments (the scene file of `fmu` and `check`).
     pub positional: Vec<String>,
     /// `path`: largest arc length as a fraction of the rod length.
@@ -54,6 +56,7 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
         output: None,
         lib: None,
         binaries: Vec::new(),
+        fmi: 2,
         positional: Vec::new(),
         max_arc: None,
         imperfection: 0.0,
@@ -102,6 +105,13 @@ pub fn parse(args: &[String]) -> Result<Options, String> {
                     format!("--binary takes PLATFORM=FILE (linux64, win64, darwin64), not `{v}`")
                 })?;
                 o.binaries.push((platform.to_string(), file.to_string()));
+            }
+            "--fmi" => {
+                o.fmi = match value()?.as_str() {
+                    "2" | "2.0" => 2,
+                    "3" | "3.0" => 3,
+                    v => return Err(format!("{flag} {v}: the FMI version is 2 or 3")),
+                }
             }
             "--max-arc" => o.max_arc = Some(positive(flag, value()?)?),
             "--imperfection" => o.imperfection = number(value()?)?,

@@ -1,6 +1,6 @@
 //! `georod fmu`: a scene file packaged with the library of every platform at hand.
 use crate::args::Options;
-use georod::packaging::binaries::Platform;
+use georod::packaging::binaries::{Api, Platform};
 use georod::packaging::{self, Library};
 use georod::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -81,7 +81,8 @@ pub fn package(o: &Options) -> Result<(), String> {
     for (platform, path) in &chosen {
         let bytes = std::fs::read(path)
             .map_err(|e| format!("cannot read the {platform} library {}: {e}", path.display()))?;
-        packaging::binaries::check_library(*platform, &bytes)
+        let api = if o.fmi == 3 { Api::Fmi3 } else { Api::Fmi2 };
+        packaging::binaries::check_library(*platform, &bytes, api)
             .map_err(|e| format!("{}: {e}", path.display()))?;
         libraries.push(Library {
             platform: *platform,
@@ -90,7 +91,10 @@ pub fn package(o: &Options) -> Result<(), String> {
     }
     let out = match &o.output {
         Some(p) => PathBuf::from(p),
-        None => target.join("fmu").join(format!("{}.fmu", scene.name)),
+        None => {
+            let folder = if o.fmi == 3 { "fmu3" } else { "fmu" };
+            target.join(folder).join(format!("{}.fmu", scene.name))
+        }
     };
     if out.extension().is_none_or(|e| e != "fmu") {
         return Err(format!(
@@ -98,7 +102,12 @@ pub fn package(o: &Options) -> Result<(), String> {
             out.display()
         ));
     }
-    let p = packaging::package(&scene, &libraries, &out).map_err(|e| format!("{file}: {e}"))?;
+    let p = if o.fmi == 3 {
+        packaging::fmu3::package3(&scene, &libraries, &out)
+    } else {
+        packaging::package(&scene, &libraries, &out)
+    }
+    .map_err(|e| format!("{file}: {e}"))?;
     println!(
         "wrote {} ({} bytes, guid {}, {} variables)",
         p.path.display(),
@@ -107,7 +116,12 @@ pub fn package(o: &Options) -> Result<(), String> {
         p.variables
     );
     for (platform, path) in &chosen {
-        println!("  binaries/{platform}: {}", path.display());
+        let folder = if o.fmi == 3 {
+            platform.fmi3_folder()
+        } else {
+            platform.folder()
+        };
+        println!("  binaries/{folder}: {}", path.display());
     }
     for platform in missing {
         eprintln!(

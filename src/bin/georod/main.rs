@@ -18,12 +18,13 @@ use std::time::Instant;
 const COMMANDS: [(&str, &str); 7] = [
     (
         "fmu",
-        "fmu FILE.toml [-o OUT.fmu] [--lib LIB] [--binary PLATFORM=FILE]...
-    package a scene file into an FMI 2.0 Co-Simulation FMU (default OUT: <target>/fmu/<name>.fmu
-    beside this executable's target folder) with a library for each platform (linux64, win64,
-    darwin64): FILE, else the one scripts/build_fmus built in that target folder (LIB or the
+        "fmu FILE.toml [-o OUT.fmu] [--fmi 2|3] [--lib LIB] [--binary PLATFORM=FILE]...
+    package a scene file into an FMI 2.0 (default) or 3.0 Co-Simulation FMU (default OUT:
+    <target>/fmu/<name>.fmu, or fmu3/ for FMI 3.0, beside this executable's target folder) with a
+    library for each platform (linux64, win64, darwin64; one library exports both versions'
+    functions): FILE, else the one scripts/build_fmus built in that target folder (LIB or the
     library next to this executable for this platform); each is checked (format, architecture,
-    every FMI 2.0 function exported) and a platform left out is named with how to build it;
+    every FMI function exported) and a platform left out is named with how to build it;
     a bad scene file is refused with the file, the key and what is allowed, and nothing is written",
     ),
     (

@@ -1,10 +1,11 @@
 //! Inquiry, logging and life cycle: `fmi2GetTypesPlatform`, `fmi2GetVersion`,
 //! `fmi2SetDebugLogging`, `fmi2Instantiate`, `fmi2FreeInstance`, `fmi2SetupExperiment`, the
 //! initialization mode, `fmi2Terminate` and `fmi2Reset`.
-use super::{input, string, with_instance};
+use super::{string, with_instance};
+use crate::fmi::ffi::strings;
 use crate::fmi::instance::Instance;
-use crate::fmi::logging::Logger;
-use crate::fmi::state_machine::{mask, Failure};
+use crate::fmi::logging::{Callback, Logger};
+use crate::fmi::state_machine::mask;
 use crate::fmi::types::*;
 use crate::fmi::uri;
 use std::os::raw::c_char;
@@ -29,14 +30,7 @@ pub unsafe extern "C" fn fmi2SetDebugLogging(
 ) -> fmi2Status {
     with_instance(c, "fmi2SetDebugLogging", |inst| {
         inst.require(mask::ANY)?;
-        let mut names = Vec::with_capacity(nCategories);
-        for (i, &p) in input(categories, nCategories, "categories[]")?
-            .iter()
-            .enumerate()
-        {
-            names
-                .push(string(p).ok_or_else(|| Failure::Error(format!("categories[{i}] is NULL")))?);
-        }
+        let names = strings(categories, nCategories, "categories[]")?;
         let names: Vec<&str> = names.iter().map(String::as_str).collect();
         inst.set_debug_logging(loggingOn != fmi2False, &names)
     })
@@ -62,7 +56,7 @@ pub unsafe extern "C" fn fmi2Instantiate(
         } else {
             Some(*functions)
         };
-        let logger = callbacks.and_then(|f| f.logger);
+        let logger = callbacks.and_then(|f| f.logger).map(Callback::Fmi2);
         let env = callbacks.map_or(std::ptr::null_mut(), |f| f.componentEnvironment);
         let name = string(instanceName);
         let log = Logger::new(

@@ -8,8 +8,8 @@
 //! The functions are `unsafe extern "C"`: their safety contract is the FMI 2.0 standard's (valid
 //! pointers with the stated lengths); everything that can be checked cheaply is checked.
 //!
-//! This file holds the helpers every wrapper uses (`with_instance`, the pointer checks); the
-//! wrappers are grouped by concern and re-exported here, so each keeps its `fmi::api::` path:
+//! The call wrapper and pointer checks are shared with the FMI 3.0 API ([`super::ffi`]); this
+//! file turns their outcome into an `fmi2Status`. The wrappers are grouped by concern and re-exported here, so each keeps its `fmi::api::` path:
 //! - `lifecycle`: version and platform, debug logging, instantiate and free, experiment setup,
 //!   initialization mode, terminate, reset;
 //! - `values`: get and set Real/Integer/Boolean/String, input and output derivatives;
@@ -29,19 +29,22 @@ pub use states::*;
 pub use stepping::*;
 pub use values::*;
 
+use super::ffi::{self, Outcome};
 use super::instance::Instance;
-use super::state_machine::{error, Failure, FmiResult};
+use super::state_machine::FmiResult;
 use super::types::*;
-use std::ffi::CStr;
-use std::os::raw::c_char;
-use std::panic::{catch_unwind, AssertUnwindSafe};
 
-fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
-    payload
-        .downcast_ref::<&str>()
-        .map(|s| s.to_string())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "unknown panic payload".to_string())
+pub(crate) use super::ffi::{input, out_ref, output, string};
+
+impl From<Outcome> for fmi2Status {
+    fn from(outcome: Outcome) -> fmi2Status {
+        match outcome {
+            Outcome::Ok => fmi2Status::OK,
+            Outcome::Warning => fmi2Status::Warning,
+            Outcome::Discard => fmi2Status::Discard,
+            Outcome::Error => fmi2Status::Error,
+        }
+    }
 }
 
 /// Runs `f` on the instance behind `c` and turns its result into an `fmi2Status`, logging
@@ -51,74 +54,16 @@ fn with_instance(
     func: &'static str,
     f: impl FnOnce(&mut Instance) -> FmiResult,
 ) -> fmi2Status {
-    // SAFETY: best-effort check of the host's pointer (see Instance::from_raw).
-    let Some(inst) = (unsafe { Instance::from_raw(c) }) else {
-        return fmi2Status::Error;
-    };
-    let ptr: *mut Instance = inst;
-    // SAFETY: `ptr` is the live instance; the closure holds the only reference while it runs.
-    match catch_unwind(AssertUnwindSafe(|| f(unsafe { &mut *ptr }))) {
-        Ok(Ok(())) => fmi2Status::OK,
-        Ok(Err(failure)) => {
-            // SAFETY: as above; the closure's reference is gone.
-            let inst = unsafe { &*ptr };
-            match failure {
-                Failure::Error(why) => {
-                    inst.log.error(&format!("{func}: {why}"));
-                    fmi2Status::Error
-                }
-                Failure::Discard(why) => {
-                    inst.log.discard(&format!("{func}: {why}"));
-                    fmi2Status::Discard
-                }
-            }
-        }
-        Err(payload) => {
-            // SAFETY: as above; the panic unwound out of the closure.
-            let inst = unsafe { &mut *ptr };
-            inst.poison();
-            inst.log.error(&format!(
-                "{func}: internal error (Rust panic: {}); the instance is now in the error state",
-                panic_text(payload.as_ref())
-            ));
-            fmi2Status::Error
-        }
-    }
+    ffi::call(c, func, |inst| f(inst).map(|()| false)).into()
 }
 
-/// A C input array as a slice (`n == 0` allows NULL).
-unsafe fn input<'a, T>(p: *const T, n: usize, what: &str) -> FmiResult<&'a [T]> {
-    if n == 0 {
-        return Ok(&[]);
-    }
-    if p.is_null() {
-        return error(format!("{what} is NULL but its length is {n}"));
-    }
-    if !p.is_aligned() || n > isize::MAX as usize / std::mem::size_of::<T>().max(1) {
-        return error(format!(
-            "{what}: misaligned pointer or impossible length {n}"
-        ));
-    }
-    Ok(std::slice::from_raw_parts(p, n))
-}
-
-/// A C output array as a slice (`n == 0` allows NULL).
-unsafe fn output<'a, T>(p: *mut T, n: usize, what: &str) -> FmiResult<&'a mut [T]> {
-    if n == 0 {
-        return Ok(&mut []);
-    }
-    input(p as *const T, n, what)?;
-    Ok(std::slice::from_raw_parts_mut(p, n))
-}
-
-/// A single C output value.
-unsafe fn out_ref<'a, T>(p: *mut T, what: &str) -> FmiResult<&'a mut T> {
-    Ok(&mut output(p, 1, what)?[0])
-}
-
-/// A C string as UTF-8 (lossy); `None` for NULL.
-unsafe fn string(p: *const c_char) -> Option<String> {
-    (!p.is_null()).then(|| CStr::from_ptr(p).to_string_lossy().into_owned())
+/// As [`with_instance`], for calls that may answer `fmi2Warning` (`f` returns `true`).
+fn with_instance_warning(
+    c: fmi2Component,
+    func: &'static str,
+    f: impl FnOnce(&mut Instance) -> FmiResult<bool>,
+) -> fmi2Status {
+    ffi::call(c, func, f).into()
 }
 
 #[cfg(test)]

@@ -67,7 +67,7 @@ impl Instance {
             _ => match &self.sim {
                 Some(sim) => Ok(sim),
                 None => error(
-                    "no simulation state to read outputs from (initialization failed); call fmi2Reset",
+                    "no simulation state to read outputs from (initialization failed); reset the instance",
                 ),
             },
         }

@@ -60,6 +60,20 @@ impl Instance {
         Ok(())
     }
 
+    /// FMI 3.0: configuration mode, where structural parameters are set. The scenes have none
+    /// (array sizes come from the scene file), so the mode only has to be entered and left.
+    pub fn enter_configuration_mode(&mut self) -> FmiResult {
+        self.require(mask::ENTER_CONFIGURATION)?;
+        self.enter(FmiState::ConfigurationMode);
+        Ok(())
+    }
+
+    pub fn exit_configuration_mode(&mut self) -> FmiResult {
+        self.require(mask::EXIT_CONFIGURATION)?;
+        self.enter(FmiState::Instantiated);
+        Ok(())
+    }
+
     pub fn enter_initialization_mode(&mut self) -> FmiResult {
         self.require(mask::ENTER_INITIALIZATION)?;
         self.enter(FmiState::InitializationMode);
@@ -77,7 +91,9 @@ impl Instance {
             }
             Err(Failure::Error(why)) | Err(Failure::Discard(why)) => {
                 self.enter(FmiState::Error);
-                error(format!("{why}; the instance is now in the error state (call fmi2Reset or fmi2FreeInstance)"))
+                error(format!(
+                    "{why}; the instance is now in the error state (reset or free it)"
+                ))
             }
         }
     }

@@ -33,8 +33,7 @@ impl Instance {
             if t + h > stop + tol.max(TIME_REL_TOL * stop.abs()) {
                 return error(format!(
                     "the step would end at t = {:e} (currentCommunicationPoint {tc:e} + \
-                     communicationStepSize {h:e}), past stopTime = {stop:e} of \
-                     fmi2SetupExperiment; nothing was computed: a step of at most {:e} is allowed",
+                     communicationStepSize {h:e}), past stopTime = {stop:e}; nothing was computed: a step of at most {:e} is allowed",
                     t + h,
                     stop - t
                 ));
@@ -59,7 +58,7 @@ impl Instance {
                 self.derivatives.clear();
                 self.log.trace(|| {
                     format!(
-                        "fmi2DoStep: t = {t:e} -> {:e}: {} sub-steps, {} Newton iterations, {} cuts",
+                        "doStep: t = {t:e} -> {:e}: {} sub-steps, {} Newton iterations, {} cuts",
                         t + h,
                         report.substeps,
                         report.newton_iterations,
@@ -67,7 +66,7 @@ impl Instance {
                     )
                 });
                 if let Some(warning) = &report.warning {
-                    self.log.warning(&format!("fmi2DoStep: {warning}"));
+                    self.log.warning(&format!("doStep: {warning}"));
                 }
                 Ok(())
             }
@@ -75,7 +74,7 @@ impl Instance {
                 self.enter(FmiState::StepFailed);
                 Err(Failure::Discard(format!(
                     "the step from t = {t} with h = {h} did not converge: {e}. The state is still the one \
-                     at t = {t} (fmi2GetRealStatus(fmi2LastSuccessfulTime)); the host may read values, \
+                     at t = {t} (the last successful time); the host may read values, \
                      restore an FMU state, reset or terminate"
                 )))
             }
