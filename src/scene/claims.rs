@@ -99,6 +99,7 @@ pub fn check_blocks(scene: &Scene) -> Result<(), (String, String)> {
                 Some(&scene.supports[support].name),
                 "motion",
             ),
+            InputKind::SpringBase(k) => entry("spring", k, Some(&scene.springs[k].name), "motion"),
         };
         return Err((
             key,
