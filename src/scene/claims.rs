@@ -106,7 +106,7 @@ pub fn check_blocks(scene: &Scene) -> Result<(), (String, String)> {
             over(
                 scene.inputs.len(),
                 MAX_INPUTS,
-                "FMI inputs (input loads and support motions, one per held dof)",
+                "FMI inputs (input loads, support motions one per held dof, spring bases)",
                 format!(
                     "value references {INPUT_VR}-{}; the sensors start at {SENSOR_VR}",
                     SENSOR_VR - 1
