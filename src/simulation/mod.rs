@@ -4,6 +4,8 @@
 //! - [`setup`]: the scene's rod, held dofs, loads and read points for given parameter values;
 //! - [`initial`]: the initial static state (load stepping, branch choice);
 //! - [`supports`]: moving supports, speed changes as impulses, reactions;
+//! - [`springs`]: spring forces, and spring bases that follow inputs (their force, work and
+//!   dissipation);
 //! - [`outputs`]: sensors, shape, reactions and energies by output id;
 //! - [`readouts`]: accelerations, section quantities and natural frequencies;
 //! - [`snapshot`]: clock, energy ledger and snapshots for exact restarts;
