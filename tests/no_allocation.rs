@@ -37,12 +37,12 @@ unsafe impl GlobalAlloc for Counting {
 static GLOBAL: Counting = Counting;
 
 /// The value of input `i` at step `k`: load inputs swing by 0.1 (N or N/m), support motions by
-/// 1e-4 (m or rad) about their start values.
+/// 1e-4 (m or rad) about their start values, spring bases like support motions.
 fn input_value(sim: &Simulation, i: usize, k: usize) -> f64 {
     let input = &sim.scene().inputs[i];
     let amplitude = match input.kind {
         InputKind::Load(_) => 0.1,
-        InputKind::Motion { .. } => 1e-4,
+        InputKind::Motion { .. } | InputKind::SpringBase(_) => 1e-4,
     };
     let start = georod::scene::variables::input_start(sim.scene(), i, sim.values());
     start + amplitude * ((k + i) as f64).sin()

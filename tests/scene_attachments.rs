@@ -304,6 +304,10 @@ fn documentation_lists_the_attachments() {
             "Bridge",
             vec!["Section: Rectangle, dimensions <code>b</code>, <code>h</code>"],
         ),
+        (
+            "ElasticBearings",
+            vec!["(its base follows the input <code>left_base</code>)"],
+        ),
     ] {
         let scene = Scene::load(repo.join(format!("examples/{example}.toml"))).unwrap();
         let page = georod::packaging::documentation::documentation(&scene, "{guid}");
@@ -320,7 +324,7 @@ fn documentation_lists_the_attachments() {
     );
     let page = georod::packaging::documentation::documentation(&springs, "{guid}");
     assert!(
-        page.contains("Spring <code>s</code> at 1 on u2: k = 5, c = 0.5"),
+        page.contains("Spring <code>s</code> at 1 on u2: k = 5, c = 0.5 (to ground)"),
         "{page}"
     );
 }

@@ -121,6 +121,9 @@ pub struct LoadSet {
     last_cos: Cell<(f64, f64, f64)>,
     /// Point forces travelling along the rod (none: no cost).
     moving: MovingLoads,
+    /// `(dof, force)` that moving spring bases exert through their springs, set before each
+    /// sub-step by the simulation, which also books their work (none: no cost).
+    base_forces: Vec<(usize, f64)>,
 }
 
 impl LoadSet {
@@ -175,7 +178,20 @@ impl LoadSet {
             input_part: vec![0.0; n],
             last_cos: Cell::new((f64::NAN, f64::NAN, f64::NAN)),
             moving: MovingLoads::default(),
+            base_forces: Vec::new(),
         }
+    }
+
+    /// The same loads with room for a force on each of these dofs (the springs whose bases
+    /// move), 0 until [`LoadSet::set_base_force`].
+    pub fn with_base_forces(mut self, dofs: &[usize]) -> LoadSet {
+        self.base_forces = dofs.iter().map(|&d| (d, 0.0)).collect();
+        self
+    }
+
+    /// Sets the force of the `i`-th moving spring base (in the order of `with_base_forces`).
+    pub fn set_base_force(&mut self, i: usize, force: f64) {
+        self.base_forces[i].1 = force;
     }
 
     /// The same loads with the travelling ones (the targets of [`LoadTime::Moving`]).
@@ -233,6 +249,9 @@ impl LoadSet {
         if !self.moving.is_empty() {
             self.moving.add_to(t, out, scale);
         }
+        for &(dof, force) in &self.base_forces {
+            out[dof] += scale * force;
+        }
         match self.harmonic.as_slice() {
             [] => {
                 for (o, s) in out.iter_mut().zip(&self.steady) {
@@ -265,7 +284,7 @@ impl LoadSet {
     }
 
     /// The work of the loads over an increment `du` with the harmonic loads taken at `t`:
-    /// `(constant and harmonic, input)`.
+    /// `(constant and harmonic, input)`; not the spring bases' forces (booked apart).
     pub fn work(&self, du: &[f64], t: f64) -> (f64, f64) {
         let dot = |f: &[f64], any: bool| {
             if any {

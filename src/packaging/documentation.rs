@@ -274,8 +274,15 @@ fn attachment_lines(scene: &Scene) -> Vec<String> {
         ));
     }
     for s in &scene.springs {
+        let base = match s.base {
+            Some(_) => format!(
+                "its base follows the input <code>{}_base</code>",
+                html(&s.name)
+            ),
+            None => "to ground".to_string(),
+        };
         lines.push(format!(
-            "Spring <code>{}</code> at {} on {}: k = {}, c = {} (to ground).",
+            "Spring <code>{}</code> at {} on {}: k = {}, c = {} ({base}).",
             html(&s.name),
             s.at,
             DOF_NAMES[s.dof],

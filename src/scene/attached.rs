@@ -3,7 +3,7 @@
 //! Their stations are nodes of every mesh.
 use super::checker::{entry, Checker};
 use super::file::{FoundationFile, MassFile, SpringFile};
-use super::{SceneError, Support, DOF_NAMES};
+use super::{Input, InputKind, SceneError, Slot, Support, DOF_NAMES};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct PointMass {
@@ -22,6 +22,8 @@ pub struct Spring {
     pub dof: usize,
     pub k: f64,
     pub c: f64,
+    /// The FMI input its base follows (`motion = "input"`); without one the base is fixed.
+    pub base: Option<usize>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -72,6 +74,7 @@ pub(super) fn springs(
     c: &Checker,
     raw: &[SpringFile],
     supports: &[Support],
+    inputs: &mut Vec<Input>,
 ) -> Result<Vec<Spring>, SceneError> {
     (raw.iter().enumerate())
         .map(|(i, s)| {
@@ -93,18 +96,40 @@ pub(super) fn springs(
                     ),
                 );
             }
-            if let Some(m) = s.motion.as_deref() {
-                c.one_of(m, &["none"], &key("motion"))?;
-            }
+            let moving = match s.motion.as_deref() {
+                None => false,
+                Some(m) => c.one_of(m, &["none", "input"], &key("motion"))? == 1,
+            };
+            let base = moving.then(|| {
+                inputs.push(base_input(&name, i, dof));
+                inputs.len() - 1
+            });
             Ok(Spring {
                 name,
                 at,
                 dof,
                 k: non_negative(c, s.k, None, &key("k"), "the stiffness (N/m, N.m/rad on w)")?,
                 c: non_negative(c, s.c, Some(0.0), &key("c"), "")?,
+                base,
             })
         })
         .collect()
+}
+
+/// The input `<name>_base` that the base of spring `index` follows (starting at 0).
+fn base_input(name: &str, index: usize, dof: usize) -> Input {
+    Input {
+        name: format!("{name}_base"),
+        kind: InputKind::SpringBase(index),
+        start: Slot::Number(0.0),
+        unit: Some(if dof == 2 { "rad" } else { "m" }.to_string()),
+        description: format!(
+            "Position of the base (far end) of spring {name} along {}: reached at the end of \
+             each communication step, linearly from its value at the start; set in \
+             initialization mode, part of the static initial state",
+            ["e1", "e2", "the rotation w"][dof]
+        ),
+    }
 }
 
 pub(super) fn foundations(

@@ -68,8 +68,9 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
 
     let mut inputs = Vec::new();
     let supports = items::supports(&c, &raw.support, &params, &mut inputs)?;
-    let springs = attached::springs(&c, &raw.spring, &supports)?;
     let loads = items::loads(&c, &raw.load, &mut params, &mut inputs)?;
+    // Spring bases' inputs after the loads': earlier scenes keep their value references.
+    let springs = attached::springs(&c, &raw.spring, &supports, &mut inputs)?;
     items::label_amplitude(&loads, &mut params);
     let sensors = raw
         .sensor

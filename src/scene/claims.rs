@@ -99,13 +99,14 @@ pub fn check_blocks(scene: &Scene) -> Result<(), (String, String)> {
                 Some(&scene.supports[support].name),
                 "motion",
             ),
+            InputKind::SpringBase(k) => entry("spring", k, Some(&scene.springs[k].name), "motion"),
         };
         return Err((
             key,
             over(
                 scene.inputs.len(),
                 MAX_INPUTS,
-                "FMI inputs (input loads and support motions, one per held dof)",
+                "FMI inputs (input loads, support motions one per held dof, spring bases)",
                 format!(
                     "value references {INPUT_VR}-{}; the sensors start at {SENSOR_VR}",
                     SENSOR_VR - 1

@@ -186,6 +186,8 @@ pub enum InputKind {
     Load(usize),
     /// The prescribed value of dof `dof` of support `support`.
     Motion { support: usize, dof: usize },
+    /// The base (far end) of spring `i`.
+    SpringBase(usize),
 }
 
 #[derive(Clone, Debug, PartialEq)]

@@ -40,7 +40,8 @@ pub fn initial_displacements(
         }
         return Ok(u);
     }
-    let constant = setup.loads.constant_vector().to_vec();
+    let mut constant = setup.loads.constant_vector().to_vec();
+    super::springs::add_static_base_forces(&setup.springs, inputs, &mut constant);
     let fail = |what: &str, e: String| SimError::InitialState(format!("{what}: {e}"));
     let mut solver = StaticSolver::new(rod);
     ramp(&mut solver, setup, &mut u, &constant, &targets)

@@ -4,6 +4,8 @@
 //! - [`setup`]: the scene's rod, held dofs, loads and read points for given parameter values;
 //! - [`initial`]: the initial static state (load stepping, branch choice);
 //! - [`supports`]: moving supports, speed changes as impulses, reactions;
+//! - [`springs`]: spring forces, and spring bases that follow inputs (their force, work and
+//!   dissipation);
 //! - [`outputs`]: sensors, shape, reactions and energies by output id;
 //! - [`readouts`]: accelerations, section quantities and natural frequencies;
 //! - [`snapshot`]: clock, energy ledger and snapshots for exact restarts;
@@ -18,6 +20,7 @@ pub mod outputs;
 pub mod readouts;
 pub mod setup;
 pub mod snapshot;
+pub mod springs;
 mod stepping;
 pub mod supports;
 
@@ -159,7 +162,7 @@ impl Simulation {
             // K0: the tangent of the initial static state, a constant matrix.
             setup.rod.with_rayleigh(r.alpha, r.beta, &initial.u);
         }
-        let static_reactions = supports::static_reactions(&setup, &initial.u);
+        let static_reactions = supports::static_reactions(&setup, &initial.u, &inputs);
         let mut integrator = Midpoint::new(&setup.rod);
         let held: Vec<usize> = setup.held.iter().map(|h| h.dof).collect();
         integrator.keep_rows(&held);
@@ -172,7 +175,8 @@ impl Simulation {
             analysis::Analysis::new(&scene, &values, &setup, integrator.scheme, &mut initial)?;
         integrator.reserve_tangents(analysis.vectors(), &setup.rod);
         let energy = EnergyLedger {
-            initial_energy: setup.rod.strain_energy(&initial.u),
+            initial_energy: setup.rod.strain_energy(&initial.u)
+                + springs::base_energy(&setup.springs, &initial.u, &inputs),
             ..EnergyLedger::default()
         };
         let moving = setup.held.iter().filter(|h| h.input.is_some()).count();

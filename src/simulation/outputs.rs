@@ -52,7 +52,8 @@ impl Simulation {
         let rod = self.rod();
         let e = (
             rod.kinetic_energy(&self.state().v),
-            rod.strain_energy(&self.state().u),
+            rod.strain_energy(&self.state().u)
+                + super::springs::base_energy(&self.setup.springs, &self.state().u, &self.inputs),
         );
         self.energies.set(Some(e));
         e
@@ -120,7 +121,8 @@ impl Simulation {
     /// The trial's kinetic and strain energy, if they and the energy error are finite.
     pub(super) fn trial_energies(&self) -> Result<(f64, f64), &'static str> {
         let kinetic = self.setup.rod.kinetic_energy(&self.trial.v);
-        let strain = self.setup.rod.strain_energy(&self.trial.u);
+        let strain = self.setup.rod.strain_energy(&self.trial.u)
+            + super::springs::base_energy(&self.setup.springs, &self.trial.u, &self.next_inputs);
         finite_energies(kinetic, strain, &self.trial_energy)
     }
 

@@ -38,8 +38,18 @@ pub struct Setup {
     pub held: Vec<Held>,
     pub sensors: Vec<Probe>,
     pub shape: Vec<Probe>,
-    /// `(dof, k, c)` of each spring, for its force output.
-    pub springs: Vec<(usize, f64, f64)>,
+    /// Every spring, for its force output (and its base's motion).
+    pub springs: Vec<SpringOnRod>,
+}
+
+/// A spring and dashpot from a dof of the rod to its base.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpringOnRod {
+    pub dof: usize,
+    pub k: f64,
+    pub c: f64,
+    /// The FMI input its base follows; `None`: the base stays at 0.
+    pub base: Option<usize>,
 }
 
 /// The reference curve of a scene with these values.
@@ -168,7 +178,21 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
             shapes.push((load_shape(l, length, true), time_of(l.time, end)));
         }
     }
-    let loads = LoadSet::new(&rod, &shapes).with_moving(MovingLoads::new(&rod.node_s, moving));
+    let springs: Vec<SpringOnRod> = (scene.springs.iter())
+        .map(|s| SpringOnRod {
+            dof: 3 * rod.node_at(s.at * length) + s.dof,
+            k: s.k,
+            c: s.c,
+            base: s.base,
+        })
+        .collect();
+    let moving_bases: Vec<usize> = (springs.iter())
+        .filter(|s| s.base.is_some())
+        .map(|s| s.dof)
+        .collect();
+    let loads = LoadSet::new(&rod, &shapes)
+        .with_moving(MovingLoads::new(&rod.node_s, moving))
+        .with_base_forces(&moving_bases);
     let probe = |at: f64| Probe {
         point: rod.point_at(at * length),
         s: at * length,
@@ -178,9 +202,6 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
     let points = scene.shape_points;
     let shape = (0..points)
         .map(|j| probe(j as f64 / (points - 1).max(1) as f64))
-        .collect();
-    let springs = (scene.springs.iter())
-        .map(|s| (3 * rod.node_at(s.at * length) + s.dof, s.k, s.c))
         .collect();
     Setup {
         rod,

@@ -231,7 +231,8 @@ impl Simulation {
         self.input_derivatives.fill(None);
         self.loads_stale = true;
         self.energy = EnergyLedger {
-            initial_energy: self.setup.rod.strain_energy(&self.initial.u),
+            initial_energy: self.setup.rod.strain_energy(&self.initial.u)
+                + super::springs::base_energy(&self.setup.springs, &self.initial.u, &self.inputs),
             ..EnergyLedger::default()
         };
         self.reactions.clone_from(&self.static_reactions);

@@ -154,6 +154,7 @@ impl Simulation {
         for k in 0..substeps {
             let t_k = clock.at(k as u64);
             self.motion_increments(k, substeps);
+            self.set_base_forces(k, substeps, dt);
             self.interpolate_load_inputs((k as f64 + 0.5) * dt);
             if k + 1 == substeps {
                 self.readouts.before_last_substep(&self.trial.v);
@@ -169,6 +170,7 @@ impl Simulation {
             factorizations += stats.factorizations;
             self.analysis.substep(s, &self.integrator, t_k, dt);
             self.book(t_k + 0.5 * dt, dt);
+            self.book_springs(k, substeps, dt);
         }
         self.readouts.after_last_substep(&self.trial.v, dt);
         // Moving supports end the step exactly at their targets (not a sum of increments).
@@ -204,11 +206,6 @@ impl Simulation {
             &mut self.trial_impulses,
             &mut self.trial_energy,
         );
-        if !self.setup.springs.is_empty() {
-            let du = self.integrator.last_increment();
-            let (u, impulses) = (&self.trial.u, &mut self.trial_impulses);
-            supports::book_spring_forces(&self.setup, u, du, dt, impulses);
-        }
     }
 
     /// Sub-steps of half a forcing period or more sample the excitation at its midpoints only:

@@ -134,9 +134,10 @@ pub fn book_reactions(
 /// The static reactions of an equilibrium `u` under the constant loads: `f_int - f_const` on
 /// the held dofs (they balance the loads exactly up to round-off).
 ///
-/// After the supports, one entry per spring: its static force on the rod `-k u` (first
-/// component), booked like a reaction over the steps (see `book_spring_forces`).
-pub fn static_reactions(setup: &Setup, u: &[f64]) -> Vec<[f64; 3]> {
+/// After the supports, one entry per spring: its static force on the rod `-k (u - b)` (first
+/// component, the bases at `inputs`), booked like a reaction over the steps (see
+/// `Simulation::book_springs`).
+pub fn static_reactions(setup: &Setup, u: &[f64], inputs: &[f64]) -> Vec<[f64; 3]> {
     let rod = &setup.rod;
     let supports = setup.support_nodes.iter().map(|&node| {
         let f = rod.node_internal_force(u, node);
@@ -148,24 +149,8 @@ pub fn static_reactions(setup: &Setup, u: &[f64]) -> Vec<[f64; 3]> {
         }
         r
     });
-    let springs = (setup.springs.iter()).map(|&(dof, k, _)| [-k * u[dof], 0.0, 0.0]);
+    let springs = super::springs::static_forces(&setup.springs, u, inputs);
     supports.chain(springs).collect()
-}
-
-/// Adds each spring's impulse on the rod over the sub-step just taken, `-(k u_mid + c du/dt)
-/// dt`, to its entry after the supports' in `impulses` (`u` the state after the sub-step).
-pub fn book_spring_forces(
-    setup: &Setup,
-    u: &[f64],
-    du: &[f64],
-    dt: f64,
-    impulses: &mut [[f64; 3]],
-) {
-    let first = setup.support_nodes.len();
-    for (j, &(dof, k, c)) in impulses[first..].iter_mut().zip(&setup.springs) {
-        let u_mid = u[dof] - 0.5 * du[dof];
-        j[0] -= k * u_mid * dt + c * du[dof];
-    }
 }
 
 impl Simulation {
