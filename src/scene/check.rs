@@ -1,14 +1,14 @@
 //! From a scene file's text to a checked [`Scene`]: types and key names (serde), then every
 //! value, every name and every reference, then the mechanics that can be judged without
-//! solving anything (supports that leave a rigid-body motion free, supports off the mesh).
-//! The sections are checked here, the items (supports, loads, sensors) in `items.rs`, with the
-//! tools of `checker.rs`.
+//! solving anything (`mechanics.rs`: a rigid-body motion left free, read-outs the section cannot
+//! give). The sections are checked here, the items (supports, loads, sensors) in `items.rs`,
+//! with the tools of `checker.rs`.
 use super::checker::{entry, Checker};
 use super::file::{ParameterFile, SceneFile};
 use super::params::{self, Needs, Param, Range, VarType, Variability, SCENE_PARAM_VR};
-use super::{attached, claims, damping, items, sections};
+use super::{attached, claims, damping, items, mechanics, sections};
 use super::{
-    Branch, DefaultExperiment, Geometry, Initial, InitialState, Quantity, Scene, SceneError, Sensor,
+    Branch, DefaultExperiment, Geometry, Initial, InitialState, Scene, SceneError, Sensor,
 };
 
 /// The scene in `text`, checked completely; `file` names it in every message.
@@ -124,7 +124,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         return c.err(format!("section.{}", e.name), e.message);
     }
     if scene.section.depth(&scene.defaults()).is_none() {
-        if let Some(key) = fiber_stress_reader(&scene) {
+        if let Some(key) = mechanics::fiber_stress_reader(&scene) {
             return c.err(
                 key,
                 "reads a fiber stress, which needs the section's depth: add `depth` to the \
@@ -139,7 +139,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         return c.err(key, message);
     }
     if scene.initial.state == InitialState::Static {
-        if let Some(free) = free_rigid_motion(&scene, span, rise) {
+        if let Some(free) = mechanics::free_rigid_motion(&scene, span, rise) {
             return c.err(
                 "[[support]]",
                 format!(
@@ -418,62 +418,4 @@ fn model(c: &Checker, raw: &SceneFile) -> Result<super::ModelOptions, SceneError
         m.rotational_damping = d;
     }
     Ok(m)
-}
-
-/// The rigid-body motion the supports leave free, if any: the held dofs must see all three
-/// planar rigid motions (two translations, a rotation about the origin) independently.
-fn free_rigid_motion(scene: &Scene, span: f64, rise: Option<f64>) -> Option<&'static str> {
-    let curve = match rise {
-        Some(h) => crate::model::ReferenceCurve::arc(span, h),
-        None => crate::model::ReferenceCurve::Straight { length: span },
-    };
-    // Rows: what each held dof sees of (translation e1, translation e2, rotation).
-    let mut rows: Vec<[f64; 3]> = Vec::new();
-    // Supports, springs and foundations (on u2 at both ends) restrain.
-    let mut held: Vec<(f64, usize)> = Vec::new();
-    for s in &scene.supports {
-        held.extend((0..3).filter(|&k| s.fixed[k]).map(|k| (s.at, k)));
-    }
-    let springs = scene.springs.iter().filter(|s| s.k > 0.0);
-    held.extend(springs.map(|s| (s.at, s.dof)));
-    let foundations = scene.foundations.iter().filter(|f| f.k > 0.0);
-    held.extend(foundations.flat_map(|f| [(f.from, 1), (f.to, 1)]));
-    for (at, k) in held {
-        let x = curve.position(at * curve.length()) / span;
-        rows.push(match k {
-            0 => [1.0, 0.0, -x[1]],
-            1 => [0.0, 1.0, x[0]],
-            _ => [0.0, 0.0, 1.0],
-        });
-    }
-    let m = nalgebra::DMatrix::from_fn(rows.len(), 3, |i, j| rows[i][j]);
-    let rank = if rows.is_empty() { 0 } else { m.rank(1e-9) };
-    if rank == 3 {
-        return None;
-    }
-    // Name one free motion: a null vector of the rows.
-    let free = |v: [f64; 3]| {
-        rows.iter()
-            .all(|r| (r[0] * v[0] + r[1] * v[1] + r[2] * v[2]).abs() < 1e-9)
-    };
-    Some(if free([1.0, 0.0, 0.0]) {
-        "translate along e1"
-    } else if free([0.0, 1.0, 0.0]) {
-        "translate along e2"
-    } else {
-        "rotate"
-    })
-}
-
-/// The key of the first sensor or shape field that reads a fiber stress, if any.
-fn fiber_stress_reader(scene: &Scene) -> Option<String> {
-    let fiber = |q: Quantity| matches!(q, Quantity::SigmaTop | Quantity::SigmaBottom);
-    if let Some(i) = scene.sensors.iter().position(|s| fiber(s.quantity)) {
-        return Some(entry("sensor", i, Some(&scene.sensors[i].name), "quantity"));
-    }
-    scene
-        .shape_fields
-        .iter()
-        .any(|&q| fiber(q))
-        .then(|| "shape.fields".to_string())
 }

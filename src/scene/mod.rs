@@ -13,6 +13,7 @@ pub mod damping;
 mod file;
 mod items;
 mod load_kinds;
+mod mechanics;
 pub mod params;
 pub mod quantity;
 pub mod readouts;
