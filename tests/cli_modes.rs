@@ -98,3 +98,36 @@ fn modes_of_a_scene_file_prints_frequencies_and_writes_shapes() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Without `--output` the shapes go to `<name>_modes.csv` in the working folder, and a second
+/// run never replaces the first one's files: it writes `<name>_modes-2.csv` (and `.svg`).
+#[test]
+fn default_shape_files_never_replace_an_earlier_run() {
+    let dir = std::env::temp_dir().join(format!("georod_cli_modes_default_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("LoadedBeam.toml"), BEAM).unwrap();
+    let run = || {
+        let out = Command::new(env!("CARGO_BIN_EXE_georod"))
+            .args(["modes", "LoadedBeam.toml", "--count", "1"])
+            .current_dir(&dir)
+            .output()
+            .expect("georod runs");
+        assert!(out.status.success(), "{out:?}");
+    };
+    run();
+    let first = dir.join("LoadedBeam_modes.csv");
+    std::fs::write(&first, "an earlier run's result\n").unwrap();
+    run();
+    assert_eq!(
+        std::fs::read_to_string(&first).unwrap(),
+        "an earlier run's result\n"
+    );
+    for name in [
+        "LoadedBeam_modes-2.csv",
+        "LoadedBeam_modes-2.svg",
+        "LoadedBeam_modes.svg",
+    ] {
+        assert!(dir.join(name).is_file(), "{name} written");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

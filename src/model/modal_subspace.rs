@@ -13,6 +13,11 @@ const MAX_PASSES: usize = 500;
 /// the largest wanted `|lambda| + s`): the Ritz values converge with the square of the vectors'
 /// error, so the vectors are then within about 1e-7.
 const TOLERANCE: f64 = 1e-13;
+/// ... or when the changes have stopped falling while below this (relative to each
+/// `|lambda| + s`): the Ritz values then sit at their round-off floor. The Rayleigh quotients
+/// are sums of the rod's stiff axial and shear terms, which cancel for its softest modes (a rod
+/// on springs, a heavy tip mass): their floor can be 1e-8 of `lambda`, far above `TOLERANCE`.
+const FLOOR: f64 = 1e-6;
 
 /// A mode: `lambda = omega^2` and its shape on every dof (zero on the held ones), with
 /// `phi^T M phi = 1`.
@@ -48,6 +53,7 @@ pub fn lowest_modes(rod: &Rod, u: &[f64], count: usize) -> Result<Vec<Mode>, Str
         })
         .collect();
     let mut previous = vec![f64::INFINITY; count];
+    let mut last_change = vec![f64::INFINITY; count];
     let mut mass_times = vec![0.0; n];
     for _ in 0..MAX_PASSES {
         // Y = A^-1 M X.
@@ -61,12 +67,15 @@ pub fn lowest_modes(rod: &Rod, u: &[f64], count: usize) -> Result<Vec<Mode>, Str
         let (lambda, vectors) = rayleigh_ritz(rod, &k, &mut x)?;
         x = combine(&x, &vectors);
         let scale = lambda[count - 1].abs() + shift;
-        let converged = lambda[..count]
-            .iter()
-            .zip(&previous)
-            .all(|(l, p)| (l - p).abs() <= TOLERANCE * scale);
+        let change: Vec<f64> = (lambda[..count].iter().zip(&previous))
+            .map(|(l, p)| (l - p).abs())
+            .collect();
+        let converged = change.iter().all(|&d| d <= TOLERANCE * scale);
+        let at_floor = (change.iter().zip(&last_change).zip(&lambda[..count]))
+            .all(|((&d, &last), l)| d <= FLOOR * (l.abs() + shift) && d >= 0.5 * last);
         previous.copy_from_slice(&lambda[..count]);
-        if converged {
+        last_change = change;
+        if converged || at_floor {
             return Ok(previous.into_iter().zip(x).collect());
         }
     }

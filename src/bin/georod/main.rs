@@ -57,8 +57,8 @@ const COMMANDS: [(&str, &str); 7] = [
         "modes",
         "modes FILE.toml [--set ...] [--count N] [--output SHAPES.csv]
     natural frequencies of any scene's initial state (constant loads on, harmonic and input
-    loads off), printed; the mode shapes written to SHAPES.csv (default <name>_modes.csv) and
-    drawn in SHAPES.svg
+    loads off), printed; the mode shapes written to SHAPES.csv (default <name>_modes.csv, or
+    <name>_modes-2.csv, ... where that exists) and drawn in SHAPES.svg
   modes --scene SCENE [--set ...] [--load-name LOAD] [--sensor NAME] [--load P] [--count N]
       [--stop MAX_LOAD] [--states FILE.csv] [--output FILE.csv]
     natural frequencies about every equilibrium of one point load's static path at one load",
@@ -292,12 +292,20 @@ fn run(args: &[String]) -> Result<(), Failure> {
         "modes" if o.scene.is_none() => {
             let file = &o.positional[0];
             let report = modal::modes_of_scene(file, &o)?;
-            let default = format!(
-                "{}_modes.csv",
-                Path::new(file)
-                    .file_stem()
-                    .map_or("scene".into(), |s| s.to_string_lossy())
-            );
+            let stem = Path::new(file)
+                .file_stem()
+                .map_or("scene".into(), |s| s.to_string_lossy());
+            // The default never replaces an earlier run's files: <name>_modes-2.csv, ...
+            let default = (1..)
+                .map(|k| match k {
+                    1 => format!("{stem}_modes.csv"),
+                    k => format!("{stem}_modes-{k}.csv"),
+                })
+                .find(|csv| {
+                    let csv = Path::new(csv);
+                    !csv.exists() && !csv.with_extension("svg").exists()
+                })
+                .expect("some free name");
             let csv = o.output.clone().unwrap_or(default);
             let svg = Path::new(&csv).with_extension("svg");
             std::fs::write(&csv, report.csv).map_err(|e| format!("{csv}: {e}"))?;
