@@ -1,5 +1,6 @@
 """Session fixtures: the scenes' FMUs (built by scripts/build_fmus when missing or stale), each
-extracted once for the FMU2Slave tests, and the core's CLI for the reference trajectories.
+extracted once for the FMU2Slave tests, the examples' FMUs, and the core's CLI for the reference
+trajectories.
 
 No silent skips: a test that needs something absent builds it (the FMUs, the CLI) or fails with
 a message saying what is missing; a skip (pytest.skip, a skip mark) is reported as a failure."""
@@ -121,6 +122,25 @@ def fmu3_paths(fmu_paths: dict[str, Path]) -> dict[Path, tuple[Path, Path]]:
     """Every scene file (scenes/ and examples/) -> its (FMI 2.0, FMI 3.0) FMU, both up to date
     (fmu_paths builds them)."""
     return {f: (FMU_DIR / f"{f.stem}.fmu", FMU3_DIR / f"{f.stem}.fmu") for f in SCENE_FILES}
+
+
+EXAMPLES = tuple(sorted(p.stem for p in (REPO / "examples").glob("*.toml")))
+
+
+@pytest.fixture(scope="session")
+def examples(
+    fmu_paths: dict[str, Path], tmp_path_factory: pytest.TempPathFactory
+) -> dict[str, FmuInfo]:
+    """The example FMUs (scripts/build_fmus packages them with the scenes), each extracted once."""
+    root = tmp_path_factory.mktemp("examples")
+    infos = {}
+    for name in EXAMPLES:
+        path = FMU_DIR / f"{name}.fmu"
+        assert path.is_file(), f"{path} missing: scripts/build_fmus packages examples/*.toml"
+        unzipdir = Path(fmpy.extract(str(path), unzipdir=str(root / name)))
+        md = fmpy.read_model_description(str(unzipdir))
+        infos[name] = FmuInfo.from_model_description(name, path, unzipdir, md)
+    return infos
 
 
 @pytest.fixture(params=SCENES)
