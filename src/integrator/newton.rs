@@ -1,7 +1,7 @@
 //! Newton iteration settings, statistics and failures shared by the static and dynamic solvers.
-use crate::model::Rod;
+use crate::model::Assembly;
 use crate::solver::vector::{inf_norm, update_and_norm};
-use crate::solver::{BlockTridiagonal, SingularMatrix};
+use crate::solver::{SingularMatrix, SystemMatrix};
 use std::fmt;
 
 /// When Newton stops. Convergence: `|delta|_inf <= relative * |increment|_inf + absolute`, where
@@ -124,9 +124,9 @@ pub(crate) enum Factorization {
 /// `jac` (constraints not yet applied), removes the constrained dofs, factors and overwrites
 /// `residual` with `-J^-1 R`, and `also` (if given) with `J^-1 also` in the same pass. Returns
 /// the norms of `R` (free dofs) and of the correction.
-pub(crate) fn newton_correction(
-    rod: &Rod,
-    jac: &mut BlockTridiagonal,
+pub(crate) fn newton_correction<A: Assembly>(
+    rod: &A,
+    jac: &mut A::Matrix,
     residual: &mut [f64],
     also: Option<&mut [f64]>,
     iteration: u32,
@@ -138,7 +138,7 @@ pub(crate) fn newton_correction(
     if !residual_norm.is_finite() {
         return Err(NewtonFailure::NonFinite { iteration });
     }
-    jac.constrain(rod.constrained());
+    rod.constrain(jac);
     match factorization {
         Factorization::General => jac.factor()?,
         Factorization::Symmetric => jac.factor_symmetric()?,
@@ -151,9 +151,9 @@ pub(crate) fn newton_correction(
 /// nearby iterate), overwrites `residual` with `-J^-1 R`, and `also` (if given) with
 /// `J^-1 also` in the same pass. Returns the norms of `R` (free dofs) and of the correction,
 /// or `None` when `R` is not finite.
-pub(crate) fn chord_correction(
-    rod: &Rod,
-    jac: &BlockTridiagonal,
+pub(crate) fn chord_correction<A: Assembly>(
+    rod: &A,
+    jac: &A::Matrix,
     residual: &mut [f64],
     also: Option<&mut [f64]>,
 ) -> Option<(f64, f64)> {
@@ -168,7 +168,7 @@ pub(crate) fn chord_correction(
 }
 
 /// `x = J^-1 x`, and the same for `also` in one pass over the factors.
-fn solve(jac: &BlockTridiagonal, x: &mut [f64], also: Option<&mut [f64]>) {
+fn solve<M: SystemMatrix>(jac: &M, x: &mut [f64], also: Option<&mut [f64]>) {
     match also {
         Some(y) => jac.solve_pair(x, y),
         None => jac.solve_in_place(x),

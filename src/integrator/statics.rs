@@ -1,23 +1,23 @@
 //! Static equilibrium `f_int(u) = f_ext` by Newton with the consistent tangent. Constrained dofs
 //! keep the values they have in `u` (prescribed displacements are set by the caller).
 use super::newton::{newton_correction, Factorization, NewtonFailure, NewtonSettings, NewtonStats};
-use crate::model::Rod;
-use crate::solver::BlockTridiagonal;
+use crate::model::Assembly;
+use crate::solver::SystemMatrix;
 
 /// Buffers of a static solve, reused between solves.
 #[derive(Clone, Debug)]
-pub struct StaticSolver {
+pub struct StaticSolver<A: Assembly = crate::model::Rod> {
     pub settings: NewtonSettings,
-    jac: BlockTridiagonal,
+    jac: A::Matrix,
     residual: Vec<f64>,
     start: Vec<f64>,
 }
 
-impl StaticSolver {
-    pub fn new(rod: &Rod) -> StaticSolver {
+impl<A: Assembly> StaticSolver<A> {
+    pub fn new(rod: &A) -> StaticSolver<A> {
         StaticSolver {
-            settings: NewtonSettings::tight(rod.curve.length()),
-            jac: BlockTridiagonal::new(rod.nodes()),
+            settings: NewtonSettings::tight(rod.length_scale()),
+            jac: rod.new_matrix(),
             residual: vec![0.0; rod.dofs()],
             start: vec![0.0; rod.dofs()],
         }
@@ -26,7 +26,7 @@ impl StaticSolver {
     /// Solves `f_int(u) = f_ext` starting from `u`; on failure `u` is restored.
     pub fn solve(
         &mut self,
-        rod: &Rod,
+        rod: &A,
         u: &mut [f64],
         f_ext: &[f64],
     ) -> Result<NewtonStats, NewtonFailure> {
@@ -40,7 +40,7 @@ impl StaticSolver {
 
     fn iterate(
         &mut self,
-        rod: &Rod,
+        rod: &A,
         u: &mut [f64],
         f_ext: &[f64],
     ) -> Result<NewtonStats, NewtonFailure> {
@@ -84,7 +84,7 @@ impl StaticSolver {
     /// load step.
     pub fn solve_ramped(
         &mut self,
-        rod: &Rod,
+        rod: &A,
         u: &mut [f64],
         f_ext: &[f64],
         steps: usize,
@@ -110,10 +110,10 @@ impl StaticSolver {
 
     /// The number of negative eigenvalues of the tangent at `u` (constraints removed): zero
     /// for a stable equilibrium. `None` if the tangent is singular to working precision.
-    pub fn negative_eigenvalues(&mut self, rod: &Rod, u: &[f64]) -> Option<usize> {
+    pub fn negative_eigenvalues(&mut self, rod: &A, u: &[f64]) -> Option<usize> {
         self.jac.set_zero();
         rod.internal_force_and_tangent(u, &mut self.residual, &mut self.jac, 1.0);
-        self.jac.constrain(rod.constrained());
+        rod.constrain(&mut self.jac);
         self.jac.factor_with_inertia().ok()?;
         Some(self.jac.negative_eigenvalues())
     }

@@ -21,7 +21,7 @@
 //! keeps the vectors bounded whatever the communication step, and makes the estimate
 //! independent of how sub-steps are grouped into communication steps.
 use super::tangent_map::TangentMap;
-use crate::model::Rod;
+use crate::model::Assembly;
 use crate::solver::vector::dot;
 
 /// The most exponents one simulation estimates.
@@ -45,7 +45,7 @@ pub struct Lyapunov {
 
 /// A deterministic pseudo-random direction over the free dofs (splitmix64), unit in the norm
 /// with weight `tau`: the same for every run of the same rod.
-pub fn seeded_direction(rod: &Rod, seed: u64, tau: f64) -> (Vec<f64>, Vec<f64>) {
+pub fn seeded_direction<A: Assembly>(rod: &A, seed: u64, tau: f64) -> (Vec<f64>, Vec<f64>) {
     let mut state = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0xD1B5_4A32_D192_ED03;
     let mut next = || {
         state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
@@ -76,7 +76,7 @@ fn weighted_dot(au: &[f64], av: &[f64], bu: &[f64], bv: &[f64], tau: f64) -> f64
 impl Lyapunov {
     /// `k` (1..=[`MAX_EXPONENTS`]) orthonormal vectors from seeded directions; the growth
     /// counts from time `count_from` on; `tau` weighs the velocities in the norm.
-    pub fn new(rod: &Rod, k: usize, tau: f64, count_from: f64) -> Lyapunov {
+    pub fn new<A: Assembly>(rod: &A, k: usize, tau: f64, count_from: f64) -> Lyapunov {
         assert!((1..=MAX_EXPONENTS).contains(&k) && tau > 0.0);
         let n = rod.dofs();
         let mut l = Lyapunov {
@@ -130,7 +130,7 @@ impl Lyapunov {
     /// Sets the tangent map's systems of the sub-step of size `dt` about to be taken: one per
     /// vector, `rhs = 2 A du + 2/dt M dv = M (4/dt^2 du + 2/dt dv) + C (2/dt du)` (`map` must
     /// have room for [`Lyapunov::count`] of them).
-    pub fn prepare(&self, rod: &Rod, dt: f64, map: &mut TangentMap) {
+    pub fn prepare<A: Assembly>(&self, rod: &A, dt: f64, map: &mut TangentMap<A>) {
         let n = self.dofs();
         map.set_count(self.count());
         for j in 0..self.count() {
@@ -147,7 +147,7 @@ impl Lyapunov {
     /// Advances the vectors over the sub-step `[t_n, t_n + dt]` just taken, from the solutions
     /// of the systems that [`Lyapunov::prepare`] set, then re-orthonormalizes them and books
     /// the growth if `t_n` counts.
-    pub fn advance(&mut self, rod: &Rod, map: &TangentMap, t_n: f64, dt: f64) {
+    pub fn advance<A: Assembly>(&mut self, rod: &A, map: &TangentMap<A>, t_n: f64, dt: f64) {
         let n = self.dofs();
         for j in 0..self.count() {
             let du = &mut self.du[j * n..(j + 1) * n];

@@ -23,10 +23,9 @@
 //! solve. (When the iteration ends on a Newton correction, `J0` is already at an iterate
 //! within the tolerance and the first solve is exact.) From [`EXACT_FROM`] systems on, one
 //! factorization of `J1` costs less than refining each system, and the step solves exactly.
-use crate::model::element::ElementTangent;
-use crate::model::Rod;
+use crate::model::Assembly;
 use crate::solver::vector::inf_norm;
-use crate::solver::{BlockTridiagonal, SingularMatrix};
+use crate::solver::{SingularMatrix, SystemMatrix};
 
 /// The relative error of a tangent solution that the refinement must estimate to leave: the
 /// solver's tolerance 1e-10 with the margin 100 of the Newton iteration's estimate (a solution
@@ -44,16 +43,16 @@ pub const EXACT_FROM: usize = 2;
 /// Right-hand sides of the tangent map, their solutions and the element tangents of the last
 /// chord correction, `count` of them (0: the step solves none). Buffers are reserved outside
 /// the step loop.
-#[derive(Clone, Debug, Default)]
-pub struct TangentMap {
+#[derive(Clone, Debug)]
+pub struct TangentMap<A: Assembly> {
     count: usize,
     dofs: usize,
     rhs: Vec<f64>,
     solution: Vec<f64>,
     /// The element tangents at the last chord correction's iterate (`K1`).
-    tangents: Vec<ElementTangent>,
+    tangents: A::Tangents,
     /// The element tangents at the iterate of the current factorization (`K0`).
-    newton: Vec<ElementTangent>,
+    newton: A::Tangents,
     /// Whether `tangents` belong to the current factorization (a chord evaluation since).
     tangents_current: bool,
     /// Scratch for the refinement's residual, and the correction before it.
@@ -64,16 +63,31 @@ pub struct TangentMap {
     refinement_solved: bool,
 }
 
-impl TangentMap {
+impl<A: Assembly> Default for TangentMap<A> {
+    fn default() -> Self {
+        TangentMap {
+            count: 0,
+            dofs: 0,
+            rhs: Vec::new(),
+            solution: Vec::new(),
+            tangents: A::Tangents::default(),
+            newton: A::Tangents::default(),
+            tangents_current: false,
+            scratch: Vec::new(),
+            correction: Vec::new(),
+            refinement_solved: false,
+        }
+    }
+}
+
+impl<A: Assembly> TangentMap<A> {
     /// Room for `count` right-hand sides of a rod (allocates; call before stepping).
-    pub fn reserve(&mut self, count: usize, rod: &Rod) {
+    pub fn reserve(&mut self, count: usize, rod: &A) {
         self.dofs = rod.dofs();
         self.rhs.resize(count * self.dofs, 0.0);
         self.solution.resize(count * self.dofs, 0.0);
-        self.tangents
-            .resize(rod.elements.len(), ElementTangent::default());
-        self.newton
-            .resize(rod.elements.len(), ElementTangent::default());
+        self.tangents = rod.new_tangents();
+        self.newton = rod.new_tangents();
         self.scratch.resize(self.dofs, 0.0);
         self.correction.resize(self.dofs, 0.0);
         self.count = 0;
@@ -103,19 +117,19 @@ impl TangentMap {
     }
 
     /// Where a chord correction's residual evaluation keeps its element tangents.
-    pub(super) fn element_tangents(&mut self) -> &mut [ElementTangent] {
+    pub(super) fn element_tangents(&mut self) -> &mut A::Tangents {
         self.tangents_current = true;
         &mut self.tangents
     }
 
     /// Where a Newton correction's evaluation keeps its element tangents, when the step
     /// refines ([`TangentMap::refine`]; not when it solves exactly).
-    pub(super) fn newton_tangents(&mut self) -> Option<&mut [ElementTangent]> {
-        (self.count > 0 && !self.exact()).then_some(&mut self.newton[..])
+    pub(super) fn newton_tangents(&mut self) -> Option<&mut A::Tangents> {
+        (self.count > 0 && !self.exact()).then_some(&mut self.newton)
     }
 
     /// `y = J^-1 b` with the factorization `jac`.
-    pub(super) fn solve(&mut self, jac: &BlockTridiagonal) {
+    pub(super) fn solve(&mut self, jac: &A::Matrix) {
         let n = self.count * self.dofs;
         self.solution[..n].copy_from_slice(&self.rhs[..n]);
         for y in self.solution[..n].chunks_exact_mut(self.dofs) {
@@ -145,7 +159,7 @@ impl TangentMap {
 
     /// After a new factorization `jac`: the first solve, unless it was `paired` with the
     /// Newton correction's or the step solves exactly at its end.
-    pub(super) fn solved_first(&mut self, jac: &BlockTridiagonal, paired: bool) {
+    pub(super) fn solved_first(&mut self, jac: &A::Matrix, paired: bool) {
         if paired || self.exact() {
             self.tangents_current = false;
             self.refinement_solved = false;
@@ -157,12 +171,12 @@ impl TangentMap {
     /// With one system and the element tangents of this chord evaluation: the first
     /// refinement's residual `b - J1 y = -(K1 - K0) y / 2`, for the chord correction to solve
     /// with its own; else `None`.
-    pub(super) fn paired_refinement(&mut self, rod: &Rod) -> Option<&mut [f64]> {
+    pub(super) fn paired_refinement(&mut self, rod: &A) -> Option<&mut [f64]> {
         self.refinement_solved = false;
         if self.count != 1 || !self.tangents_current {
             return None;
         }
-        let tangents = (&self.tangents[..], &self.newton[..]);
+        let tangents = (&self.tangents, &self.newton);
         refinement_residual(
             rod,
             tangents,
@@ -176,12 +190,12 @@ impl TangentMap {
     /// Refines the solutions towards `J1^-1 b` with `J0` factored in `jac`. Returns false where
     /// that cannot be trusted (no element tangents for this factorization, or no
     /// contraction): the caller then solves exactly ([`TangentMap::solve_exactly`]).
-    pub(super) fn refine(&mut self, rod: &Rod, jac: &BlockTridiagonal) -> bool {
+    pub(super) fn refine(&mut self, rod: &A, jac: &A::Matrix) -> bool {
         if !self.tangents_current {
             return false;
         }
         let n = self.dofs;
-        let tangents = (&self.tangents[..], &self.newton[..]);
+        let tangents = (&self.tangents, &self.newton);
         for j in 0..self.count {
             let range = j * n..(j + 1) * n;
             let size = inf_norm(&self.solution[range.clone()]);
@@ -229,17 +243,14 @@ impl TangentMap {
     /// `jac` and factored.
     pub(super) fn solve_exactly(
         &mut self,
-        rod: &Rod,
-        dynamic: &BlockTridiagonal,
-        jac: &mut BlockTridiagonal,
+        rod: &A,
+        dynamic: &A::Matrix,
+        jac: &mut A::Matrix,
     ) -> Result<(), SingularMatrix> {
         debug_assert!(self.tangents_current);
         jac.copy_from(dynamic);
-        for (e, ke) in self.tangents.iter().enumerate() {
-            jac.add_pair(e, ke, 0.5);
-        }
-        rod.add_attached_stiffness(jac, 0.5);
-        jac.constrain(rod.constrained());
+        rod.add_kept_tangents(jac, &self.tangents, 0.5);
+        rod.constrain(jac);
         jac.factor_symmetric()?;
         self.solve(jac);
         Ok(())
@@ -249,9 +260,9 @@ impl TangentMap {
 /// A refinement's residual `b - J1 y` from the last vector solved with `J0` (the first
 /// solution, or the last correction `x`): `-(K1 - K0) x / 2` over the free dofs, with `K1`, `K0`
 /// the element tangents `(k1, k0)` of the chord and Newton iterates (see the module doc).
-fn refinement_residual(
-    rod: &Rod,
-    tangents: (&[ElementTangent], &[ElementTangent]),
+fn refinement_residual<A: Assembly>(
+    rod: &A,
+    tangents: (&A::Tangents, &A::Tangents),
     x: &[f64],
     out: &mut [f64],
 ) {

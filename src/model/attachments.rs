@@ -4,7 +4,7 @@
 //! mass, damping and stiffness of the rod as a few diagonal entries and consistent bands, so a
 //! step costs nothing more than their own terms.
 use super::bands::Bands;
-use crate::solver::BlockTridiagonal;
+use crate::solver::PairSink;
 use nalgebra::Vector3;
 
 /// A value on one global dof.
@@ -69,14 +69,14 @@ impl Attachments {
     }
 
     /// `jac += scale * M_attached`.
-    pub fn add_mass(&self, jac: &mut BlockTridiagonal, scale: f64) {
+    pub fn add_mass(&self, jac: &mut impl PairSink, scale: f64) {
         for m in &self.masses {
             jac.add_diagonal(m.dof, scale * m.value);
         }
     }
 
     /// `jac += scale * C_attached`.
-    pub fn add_damping(&self, jac: &mut BlockTridiagonal, scale: f64) {
+    pub fn add_damping(&self, jac: &mut impl PairSink, scale: f64) {
         for d in &self.dashpots {
             jac.add_diagonal(d.dof, scale * d.value);
         }
@@ -87,7 +87,7 @@ impl Attachments {
     }
 
     /// `jac += scale * K_attached`.
-    pub fn add_stiffness(&self, jac: &mut BlockTridiagonal, scale: f64) {
+    pub fn add_stiffness(&self, jac: &mut impl PairSink, scale: f64) {
         for s in &self.springs {
             jac.add_diagonal(s.dof, scale * s.value);
         }

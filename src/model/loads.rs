@@ -129,7 +129,19 @@ pub struct LoadSet {
 impl LoadSet {
     /// Loads `(where, when)` on `rod`, all with magnitude 0 until [`LoadSet::set_magnitudes`].
     pub fn new(rod: &Rod, loads: &[(LoadShape, LoadTime)]) -> LoadSet {
-        let n = rod.dofs();
+        let vectors = (loads.iter())
+            .map(|(shape, time)| match time {
+                // Placed as they travel (`MovingLoads`).
+                LoadTime::Moving { .. } => (Vec::new(), *time),
+                _ => (shape.nodal_vector(rod), *time),
+            })
+            .collect();
+        LoadSet::from_vectors(rod.dofs(), vectors)
+    }
+
+    /// Loads given by their nodal vectors at unit magnitude (folded, for a structure) over
+    /// `n` dofs, and when they act (a moving load's vector is not used).
+    pub fn from_vectors(n: usize, loads: Vec<(Vec<f64>, LoadTime)>) -> LoadSet {
         let groups = loads
             .iter()
             .filter_map(|(_, t)| match t {
@@ -140,26 +152,25 @@ impl LoadSet {
             .unwrap_or(0);
         let mut harmonic = vec![(vec![0.0; n], 0.0); groups];
         let mut steady_entries: Vec<SteadyEntry> = Vec::new();
-        for (i, (shape, time)) in loads.iter().enumerate() {
+        for (i, (q, time)) in loads.iter().enumerate() {
             if let LoadTime::Moving { .. } = time {
                 continue;
             }
-            let q = shape.nodal_vector(rod);
             match *time {
                 LoadTime::Harmonic { group } => {
                     let sum = &mut harmonic[group].0;
                     if sum.iter().all(|&x| x == 0.0) {
-                        sum.copy_from_slice(&q);
+                        sum.copy_from_slice(q);
                     } else {
-                        sum.iter_mut().zip(&q).for_each(|(a, b)| *a += b);
+                        sum.iter_mut().zip(q).for_each(|(a, b)| *a += b);
                     }
                 }
                 LoadTime::Moving { .. } => {}
                 LoadTime::Constant | LoadTime::Input => {
-                    match steady_entries.iter_mut().find(|e| e.shape == q) {
+                    match steady_entries.iter_mut().find(|e| &e.shape == q) {
                         Some(entry) => entry.loads.push(i),
                         None => steady_entries.push(SteadyEntry {
-                            shape: q,
+                            shape: q.clone(),
                             loads: vec![i],
                         }),
                     }

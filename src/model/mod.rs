@@ -1,5 +1,6 @@
 //! The rod model of `docs/model.md` (sections 1 to 5): reference geometry, section, the hybrid
 //! element and the assembled rod with its constraints, loads, mass and damping.
+pub mod assembly;
 pub mod attachments;
 pub mod bands;
 pub mod element;
@@ -13,10 +14,13 @@ pub mod rayleigh;
 pub mod rod;
 pub mod section;
 pub mod section_forces;
+pub mod structure;
 
+pub use assembly::Assembly;
 pub use element::Element;
 pub use geometry::ReferenceCurve;
 pub use loads::{LoadSet, LoadShape, LoadTime};
-pub use rod::{PointOnRod, Rod};
+pub use rod::{Placement, PointOnRod, Rod};
 pub use section::Section;
 pub use section_forces::SectionForces;
+pub use structure::{Place, Structure};

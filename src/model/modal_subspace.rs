@@ -3,8 +3,8 @@
 //! a Rayleigh-Ritz step on `K phi = lambda M phi` in the iterated subspace after each pass
 //! (`lambda = omega^2`). For a few modes of a long rod this costs `O(n)` where the dense
 //! eigenproblem of [`super::modal`] costs `O(n^3)`.
-use super::rod::Rod;
-use crate::solver::BlockTridiagonal;
+use super::assembly::Assembly;
+use crate::solver::SystemMatrix;
 use nalgebra::DMatrix;
 
 /// Most passes of the subspace iteration before it is given up.
@@ -25,16 +25,16 @@ pub type Mode = (f64, Vec<f64>);
 
 /// The `count` lowest modes of `K_T(u) phi = lambda M phi` on the free dofs of `rod`, ascending;
 /// an error if the iteration does not converge (or no shift makes `A` positive definite).
-pub fn lowest_modes(rod: &Rod, u: &[f64], count: usize) -> Result<Vec<Mode>, String> {
+pub fn lowest_modes<A: Assembly>(rod: &A, u: &[f64], count: usize) -> Result<Vec<Mode>, String> {
     let n = rod.dofs();
     let free = n - rod.constrained().len();
     let width = (2 * count).max(count + 8).min(free);
     if count == 0 || count > free {
         return Err(format!("{count} modes of a rod with {free} free dofs"));
     }
-    let mut k = BlockTridiagonal::new(rod.nodes());
+    let mut k = rod.new_matrix();
     rod.internal_force_and_tangent(u, &mut vec![0.0; n], &mut k, 1.0);
-    k.constrain(rod.constrained());
+    rod.constrain(&mut k);
     let (a, shift) = shifted_factor(rod, &k)?;
     // Deterministic start vectors (a fixed pseudo-random sequence), zero on the held dofs.
     let mut state = 0x9E37_79B9_7F4A_7C15_u64;
@@ -88,15 +88,13 @@ pub fn lowest_modes(rod: &Rod, u: &[f64], count: usize) -> Result<Vec<Mode>, Str
 /// `EI / (rho A S^4)`, then ten times more up to twenty times) that makes it positive definite:
 /// the wanted `lambda` (the lowest, possibly negative or zero) are then the largest
 /// `1 / (lambda + s)`.
-fn shifted_factor(rod: &Rod, k: &BlockTridiagonal) -> Result<(BlockTridiagonal, f64), String> {
-    let c = &rod.section;
-    let length = rod.curve.length();
-    let mut shift = 1e-3 * c.ei / (c.rho_a * length.powi(4));
+fn shifted_factor<A: Assembly>(rod: &A, k: &A::Matrix) -> Result<(A::Matrix, f64), String> {
+    let mut shift = 1e-3 * rod.bending_scale();
     for _ in 0..20 {
-        let mut a = BlockTridiagonal::new(rod.nodes());
+        let mut a = rod.new_matrix();
         a.copy_from(k);
         rod.add_mass(&mut a, shift);
-        a.constrain(rod.constrained());
+        rod.constrain(&mut a);
         if a.factor_with_inertia().is_ok() && a.negative_eigenvalues() == 0 {
             return Ok((a, shift));
         }
@@ -108,9 +106,9 @@ fn shifted_factor(rod: &Rod, k: &BlockTridiagonal) -> Result<(BlockTridiagonal, 
 /// The Ritz values (ascending) and vectors (columns) of `K`, `M` in the span of `y`, after `y`
 /// is made `M`-orthonormal (the passes make its columns nearly parallel: the lowest modes
 /// dominate every one of them).
-fn rayleigh_ritz(
-    rod: &Rod,
-    k: &BlockTridiagonal,
+fn rayleigh_ritz<A: Assembly>(
+    rod: &A,
+    k: &A::Matrix,
     y: &mut [Vec<f64>],
 ) -> Result<(Vec<f64>, DMatrix<f64>), String> {
     m_orthonormalize(rod, y)?;
@@ -134,7 +132,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 
 /// Modified Gram-Schmidt in the `M` inner product, each vector twice against the ones before it
 /// (once is not enough for nearly parallel vectors).
-fn m_orthonormalize(rod: &Rod, y: &mut [Vec<f64>]) -> Result<(), String> {
+fn m_orthonormalize<A: Assembly>(rod: &A, y: &mut [Vec<f64>]) -> Result<(), String> {
     let n = rod.dofs();
     let mut my: Vec<Vec<f64>> = Vec::with_capacity(y.len());
     for j in 0..y.len() {
@@ -179,7 +177,7 @@ fn combine(y: &[Vec<f64>], phi: &DMatrix<f64>) -> Vec<Vec<f64>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{ReferenceCurve, Section};
+    use crate::model::{ReferenceCurve, Rod, Section};
 
     /// Against the dense eigenproblem: a pinned-pinned rod, a free rod (three rigid motions at
     /// zero) and a compressed rod past its buckling load (a negative `lambda`), to 1e-9 relative

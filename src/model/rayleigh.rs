@@ -5,7 +5,7 @@
 use super::bands::Bands;
 use super::element::{ElementTangent, Vector6};
 use super::Rod;
-use crate::solver::BlockTridiagonal;
+use crate::solver::PairSink;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct StiffnessDamping {
@@ -45,7 +45,7 @@ impl StiffnessDamping {
     }
 
     /// `jac += scale * beta K0`.
-    pub fn add_to(&self, rod: &Rod, jac: &mut BlockTridiagonal, scale: f64) {
+    pub fn add_to(&self, rod: &Rod, jac: &mut impl PairSink, scale: f64) {
         for (e, k) in self.tangents.iter().enumerate() {
             jac.add_pair(e, k, scale * self.beta);
         }

@@ -11,7 +11,9 @@ use super::element::{
 use super::geometry::ReferenceCurve;
 use super::rayleigh::StiffnessDamping;
 use super::section::Section;
+#[cfg(test)]
 use crate::solver::BlockTridiagonal;
+use crate::solver::PairSink;
 use nalgebra::Vector2;
 
 #[path = "rod_attachments.rs"]
@@ -35,9 +37,38 @@ pub struct PointOnRod {
     pub weights: (f64, f64),
 }
 
+/// Where a rod's reference curve lies in the plane: its curve (which starts at the origin)
+/// turned by `angle` about the origin, then moved to `origin`. A member of a frame is placed so
+/// that its curve runs from its `from` joint to its `to` joint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    pub origin: Vector2<f64>,
+    pub angle: f64,
+    /// `(cos angle, sin angle)`.
+    pub direction: Vector2<f64>,
+}
+
+impl Placement {
+    pub fn new(origin: Vector2<f64>, angle: f64) -> Placement {
+        Placement {
+            origin,
+            angle,
+            direction: Vector2::new(libm::cos(angle), libm::sin(angle)),
+        }
+    }
+
+    /// `origin + R(angle) x`.
+    pub fn place(&self, x: Vector2<f64>) -> Vector2<f64> {
+        let (c, s) = (self.direction[0], self.direction[1]);
+        self.origin + Vector2::new(c * x[0] - s * x[1], s * x[0] + c * x[1])
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct Rod {
     pub curve: ReferenceCurve,
+    /// Where the curve lies (`None`: as it is, from the origin along `e1`).
+    pub placement: Option<Placement>,
     pub section: Section,
     /// Viscous damping per unit length on the translations.
     pub damping: f64,
@@ -109,6 +140,7 @@ impl Rod {
             .collect();
         let mut rod = Rod {
             curve,
+            placement: None,
             section,
             damping,
             elements,
@@ -128,6 +160,33 @@ impl Rod {
         };
         rod.update_bands();
         rod
+    }
+
+    /// The same rod with its curve placed in the plane (its elements' reference angles turned
+    /// with it).
+    pub fn with_placement(mut self, placement: Placement) -> Rod {
+        for (e, el) in self.elements.iter_mut().enumerate() {
+            let (a, l) = (self.node_s[e], el.length);
+            let alpha = GAUSS_POINTS.map(|xi| {
+                let (_, nb) = shape_functions(xi);
+                placement.angle + self.curve.tangent_angle(a + nb * l)
+            });
+            *el = Element::new(l, alpha);
+        }
+        self.placement = Some(placement);
+        self
+    }
+
+    /// The reference position `X(s)` in the plane.
+    pub fn reference_position(&self, s: f64) -> Vector2<f64> {
+        let x = self.curve.position(s);
+        self.placement.map_or(x, |p| p.place(x))
+    }
+
+    /// The reference tangent angle `alpha(s)` in the plane.
+    pub fn reference_angle(&self, s: f64) -> f64 {
+        let alpha = self.curve.tangent_angle(s);
+        self.placement.map_or(alpha, |p| p.angle + alpha)
     }
 
     /// The bands of the mass and damping matrices from the element coefficients.
@@ -242,7 +301,7 @@ impl Rod {
         ua: &[f64],
         ub: &[f64],
         f: &mut [f64],
-        jac: &mut BlockTridiagonal,
+        jac: &mut impl PairSink,
         scale: f64,
     ) {
         f.fill(0.0);
@@ -260,7 +319,7 @@ impl Rod {
     }
 
     /// `jac += scale * M`.
-    pub fn add_mass(&self, jac: &mut BlockTridiagonal, scale: f64) {
+    pub fn add_mass(&self, jac: &mut impl PairSink, scale: f64) {
         for (e, m) in self.inertia.iter().enumerate() {
             jac.add_pair_pattern(e, &m.coefficients(false), scale, self.lumped);
         }
@@ -268,7 +327,7 @@ impl Rod {
     }
 
     /// `jac += scale * C` (damping).
-    pub fn add_damping(&self, jac: &mut BlockTridiagonal, scale: f64) {
+    pub fn add_damping(&self, jac: &mut impl PairSink, scale: f64) {
         for (e, m) in self.inertia.iter().enumerate() {
             jac.add_pair_pattern(e, &m.coefficients(true), scale, self.lumped);
         }
@@ -325,7 +384,7 @@ impl Rod {
 
     /// Current position of node `i`.
     pub fn node_position(&self, u: &[f64], i: usize) -> Vector2<f64> {
-        self.curve.position(self.node_s[i]) + Vector2::new(u[3 * i + U1], u[3 * i + U2])
+        self.reference_position(self.node_s[i]) + Vector2::new(u[3 * i + U1], u[3 * i + U2])
     }
 
     /// Sets constrained entries of `x` to zero.

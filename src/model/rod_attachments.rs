@@ -5,7 +5,7 @@ use super::Rod;
 use crate::model::attachments::Attachments;
 use crate::model::bands::Bands;
 use crate::model::rayleigh::StiffnessDamping;
-use crate::solver::BlockTridiagonal;
+use crate::solver::PairSink;
 
 impl Rod {
     /// Rayleigh damping `alpha M + beta K0` added to the damping matrix, `K0` the tangent
@@ -35,7 +35,7 @@ impl Rod {
     }
 
     /// `jac += scale * K_attached` (springs and foundations).
-    pub fn add_attached_stiffness(&self, jac: &mut BlockTridiagonal, scale: f64) {
+    pub fn add_attached_stiffness(&self, jac: &mut impl PairSink, scale: f64) {
         self.attachments.add_stiffness(jac, scale);
     }
 

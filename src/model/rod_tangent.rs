@@ -4,7 +4,7 @@
 //! `rod` (declared there), so it uses the rod's element loop (`assemble`).
 use super::{assemble, Rod};
 use crate::model::element::ElementTangent;
-use crate::solver::BlockTridiagonal;
+use crate::solver::PairSink;
 use nalgebra::Vector6;
 
 impl Rod {
@@ -13,7 +13,7 @@ impl Rod {
         &self,
         u: &[f64],
         f: &mut [f64],
-        jac: &mut BlockTridiagonal,
+        jac: &mut impl PairSink,
         scale: f64,
     ) {
         let (mut fe, mut ke) = (Vector6::zeros(), ElementTangent::default());
@@ -32,7 +32,7 @@ impl Rod {
         &self,
         u: &[f64],
         f: &mut [f64],
-        jac: &mut BlockTridiagonal,
+        jac: &mut impl PairSink,
         scale: f64,
         kept: &mut [ElementTangent],
     ) {

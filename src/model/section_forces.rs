@@ -54,7 +54,7 @@ impl Rod {
         let (offset, sign) = if end == 0 { (0, -1.0) } else { (3, 1.0) };
         let node = e + end;
         let (fx, fy) = (sign * f[offset + U1], sign * f[offset + U2]);
-        let beta = self.curve.tangent_angle(self.node_s[node]) + u[3 * node + ROTATION];
+        let beta = self.reference_angle(self.node_s[node]) + u[3 * node + ROTATION];
         let (sin, cos) = libm::sincos(beta);
         SectionForces {
             n: fx * cos + fy * sin,

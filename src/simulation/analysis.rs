@@ -5,6 +5,7 @@ use super::setup::Setup;
 use super::SimError;
 use crate::integrator::tangent::{seeded_direction, Lyapunov};
 use crate::integrator::{DynamicState, Midpoint, Scheme};
+use crate::model::{Assembly, Structure};
 use crate::scene::params::{refuse, LYAPUNOV, LYAPUNOV_ALIGN, LYAPUNOV_START, PERTURBATION};
 use crate::scene::{ParamValues, Scene, Std};
 
@@ -41,7 +42,7 @@ impl Analysis {
         scheme: Scheme,
         initial: &mut DynamicState,
     ) -> Result<Analysis, SimError> {
-        let rod = &setup.rod;
+        let rod = &setup.structure;
         let omega = setup.loads.frequency;
         let tau = if omega > 0.0 {
             1.0 / omega
@@ -55,7 +56,7 @@ impl Analysis {
             );
             match scene.section.rectangle(values) {
                 Some((_, h)) => l * l * (12.0 * rho / (e * h * h)).sqrt(),
-                None => l * l * (rod.section.rho_a / rod.section.ei).sqrt(),
+                None => l * l * (rod.rod().section.rho_a / rod.rod().section.ei).sqrt(),
             }
         };
         if !(tau.is_finite() && tau > 0.0) {
@@ -64,7 +65,7 @@ impl Analysis {
             )));
         }
         let k = values.get(index(scene, LYAPUNOV)) as usize;
-        let free = rod.fixed.iter().filter(|&&f| !f).count();
+        let free = rod.dofs() - rod.constrained().len();
         if k > 0 && scheme != Scheme::Midpoint {
             return Err(refuse(
                 LYAPUNOV,
@@ -111,7 +112,7 @@ impl Analysis {
             return;
         }
         // Seed 0: not one of the tangent vectors' seeds (1..=k).
-        let (du, dv) = seeded_direction(&setup.rod, 0, self.tau);
+        let (du, dv) = seeded_direction(&setup.structure, 0, self.tau);
         state
             .u
             .iter_mut()
@@ -135,19 +136,25 @@ impl Analysis {
 
     /// Sets the tangent map's systems that the sub-step from `t_n` of size `dt` solves:
     /// those of the trial tangent vectors from the start time on, else none.
-    pub fn prepare(&mut self, setup: &Setup, t_n: f64, dt: f64, integrator: &mut Midpoint) {
+    pub fn prepare(
+        &mut self,
+        setup: &Setup,
+        t_n: f64,
+        dt: f64,
+        integrator: &mut Midpoint<Structure>,
+    ) {
         let map = integrator.tangent_map_mut();
         match self.trial.as_ref().filter(|_| t_n >= self.start) {
-            Some(t) => t.prepare(&setup.rod, dt, map),
+            Some(t) => t.prepare(&setup.structure, dt, map),
             None => map.set_count(0),
         }
     }
 
     /// Advances the trial tangent vectors over the sub-step from `t_n` that `integrator` just
     /// took (if [`Analysis::prepare`] set its systems).
-    pub fn substep(&mut self, setup: &Setup, integrator: &Midpoint, t_n: f64, dt: f64) {
+    pub fn substep(&mut self, setup: &Setup, integrator: &Midpoint<Structure>, t_n: f64, dt: f64) {
         if let Some(t) = self.trial.as_mut().filter(|_| t_n >= self.start) {
-            t.advance(&setup.rod, integrator.tangent_map(), t_n, dt);
+            t.advance(&setup.structure, integrator.tangent_map(), t_n, dt);
         }
     }
 

@@ -4,7 +4,7 @@
 use super::setup::Setup;
 use super::SimError;
 use crate::integrator::{NewtonFailure, StaticSolver};
-use crate::model::Rod;
+use crate::model::{Assembly, Structure};
 use crate::scene::{InitialState, ParamValues, Scene};
 
 /// Load steps of the first pass; a step that fails is split in halves, down to
@@ -31,7 +31,7 @@ pub fn initial_displacements(
     setup: &Setup,
     inputs: &[f64],
 ) -> Result<Vec<f64>, SimError> {
-    let rod = &setup.rod;
+    let rod = &setup.structure;
     let targets = prescribed(setup, values, inputs);
     let mut u = vec![0.0; rod.dofs()];
     if scene.initial.state == InitialState::Reference {
@@ -53,9 +53,10 @@ pub fn initial_displacements(
     let probe = setup.sensors[branch.sensor];
     let dof = (scene.sensors[branch.sensor].quantity.displacement_dof())
         .expect("the branch sensor reads a displacement (checked with the scene)");
-    let sensor = |u: &[f64]| rod.interpolate(u, probe.point, dof);
-    let stable =
-        |solver: &mut StaticSolver, u: &[f64]| solver.negative_eigenvalues(rod, u) == Some(0);
+    let sensor = |u: &[f64]| rod.interpolate(u, probe, dof);
+    let stable = |solver: &mut StaticSolver<Structure>, u: &[f64]| {
+        solver.negative_eigenvalues(rod, u) == Some(0)
+    };
     if sensor(&u) * well > 0.0 && stable(&mut solver, &u) {
         return Ok(u);
     }
@@ -68,8 +69,14 @@ pub fn initial_displacements(
     // at the sensor along its dof pushing towards the chosen side, then take that load away.
     // The load starts small (it must not change the equilibrium it selects) and grows tenfold
     // while the path ends on the wrong side (the constant loads may push the other way).
-    let length = rod.curve.length();
-    let force = IMPERFECTION * 48.0 * rod.section.ei / (length * length);
+    let length = rod.length_scale();
+    let ei = match probe {
+        crate::model::Place::Member { member, .. } => rod.members[member].rod.section.ei,
+        crate::model::Place::Joint(_) => {
+            (rod.members.iter().map(|m| m.rod.section.ei)).fold(f64::INFINITY, f64::min)
+        }
+    };
+    let force = IMPERFECTION * 48.0 * ei / (length * length);
     let unit = if dof == 2 {
         force * length / 4.0
     } else {
@@ -83,9 +90,7 @@ pub fn initial_displacements(
     for growth in [1.0, 10.0, 100.0] {
         let size = well * unit * growth;
         let mut imperfection = vec![0.0; constant.len()];
-        let (na, nb) = probe.point.weights;
-        imperfection[3 * probe.point.element + dof] += size * na;
-        imperfection[3 * (probe.point.element + 1) + dof] += size * nb;
+        rod.add_point_force(&mut imperfection, probe, dof, size);
         u.fill(0.0);
         if let Err(e) = ramp_with(
             &mut solver,
@@ -120,8 +125,8 @@ pub fn initial_displacements(
 
 /// Takes the branch-selecting `imperfection` away in equal steps (Newton from each state).
 fn unload(
-    solver: &mut StaticSolver,
-    rod: &Rod,
+    solver: &mut StaticSolver<Structure>,
+    rod: &Structure,
     u: &mut [f64],
     constant: &[f64],
     imperfection: &[f64],
@@ -140,7 +145,7 @@ fn unload(
 
 /// Steps the constant loads and the prescribed displacements from 0 to their values.
 fn ramp(
-    solver: &mut StaticSolver,
+    solver: &mut StaticSolver<Structure>,
     setup: &Setup,
     u: &mut [f64],
     load: &[f64],
@@ -155,14 +160,14 @@ fn ramp(
 /// Steps `lambda` from 0 to 1 with the loads `lambda * load + extra` and the held dofs at
 /// `lambda * targets`; a failing step is split in halves (up to [`MAX_REFINE`] times).
 fn ramp_with(
-    solver: &mut StaticSolver,
+    solver: &mut StaticSolver<Structure>,
     setup: &Setup,
     u: &mut [f64],
     load: &[f64],
     targets: &[f64],
     extra: &[f64],
 ) -> Result<(), String> {
-    let rod: &Rod = &setup.rod;
+    let rod: &Structure = &setup.structure;
     let mut f = vec![0.0; load.len()];
     // lambda = num / den exactly, so the first pass takes the loads k / 20 of the full ones.
     let (mut num, mut den, mut refine) = (0u64, RAMP_STEPS, 0u32);

@@ -29,6 +29,7 @@ pub use snapshot::{Clock, EnergyLedger, Snapshot, SNAPSHOT_VERSION};
 pub use stepping::{AdvanceReport, MAX_STEP_CUTS, MAX_SUBSTEPS};
 
 use crate::integrator::{DynamicState, Midpoint, Scheme};
+use crate::model::{Assembly, Structure};
 use crate::scene::{ParamError, ParamValues, Scene, Std, Variability};
 use setup::Setup;
 use std::cell::Cell;
@@ -80,7 +81,7 @@ pub struct Simulation {
     scene: Arc<Scene>,
     values: ParamValues,
     setup: Setup,
-    integrator: Midpoint,
+    integrator: Midpoint<Structure>,
     initial: DynamicState,
     state: DynamicState,
     /// Scratch state of a communication step in progress (the state is replaced on success).
@@ -118,7 +119,7 @@ pub struct Simulation {
     /// Derivatives (first, second) of each input at the next communication point, if the host
     /// gave them: the input then follows their polynomial over the step.
     input_derivatives: Vec<Option<[f64; 2]>>,
-    motion: Option<MotionSolver>,
+    motion: Option<MotionSolver<Structure>>,
     /// Lyapunov exponents and the `perturbation` kick.
     analysis: analysis::Analysis,
     /// Accelerations, section quantities and natural frequencies.
@@ -160,10 +161,10 @@ impl Simulation {
         )?);
         if let Some(r) = scene.rayleigh {
             // K0: the tangent of the initial static state, a constant matrix.
-            setup.rod.with_rayleigh(r.alpha, r.beta, &initial.u);
+            setup.structure.with_rayleigh(r.alpha, r.beta, &initial.u);
         }
         let static_reactions = supports::static_reactions(&setup, &initial.u, &inputs);
-        let mut integrator = Midpoint::new(&setup.rod);
+        let mut integrator = Midpoint::new(&setup.structure);
         let held: Vec<usize> = setup.held.iter().map(|h| h.dof).collect();
         integrator.keep_rows(&held);
         integrator.scheme = if values.std(Std::Integrator) == 2.0 {
@@ -173,16 +174,16 @@ impl Simulation {
         };
         let analysis =
             analysis::Analysis::new(&scene, &values, &setup, integrator.scheme, &mut initial)?;
-        integrator.reserve_tangents(analysis.vectors(), &setup.rod);
+        integrator.reserve_tangents(analysis.vectors(), &setup.structure);
         let energy = EnergyLedger {
-            initial_energy: setup.rod.strain_energy(&initial.u)
+            initial_energy: setup.structure.strain_energy(&initial.u)
                 + springs::base_energy(&setup.springs, &initial.u, &inputs),
             ..EnergyLedger::default()
         };
         let moving = setup.held.iter().filter(|h| h.input.is_some()).count();
         let motion = match moving {
             0 => None,
-            _ => Some(MotionSolver::new(&setup.rod).map_err(SimError::InitialState)?),
+            _ => Some(MotionSolver::new(&setup.structure).map_err(SimError::InitialState)?),
         };
         let readouts = readouts::Readouts::new(&scene, &values, &setup, &initial.u)?;
         let sim = Simulation {
@@ -239,8 +240,13 @@ impl Simulation {
         &self.setup
     }
 
+    /// The first member's rod (a scene without joints: the rod).
     pub fn rod(&self) -> &crate::model::Rod {
-        &self.setup.rod
+        self.setup.structure.rod()
+    }
+
+    pub fn structure(&self) -> &Structure {
+        &self.setup.structure
     }
 
     pub fn state(&self) -> &DynamicState {

@@ -2,6 +2,7 @@
 //! the shape functions, support reactions, energies and the energy ledger.
 use super::snapshot::EnergyLedger;
 use super::Simulation;
+use crate::model::Assembly;
 use crate::scene::variables::{OutputId, StandardOutput};
 
 /// Displacements and velocities beyond this have blown up in any unit system; refusing them
@@ -35,12 +36,12 @@ impl Simulation {
     /// displacement.
     pub fn shape_point(&self, i: usize) -> [f64; 2] {
         let probe = self.setup().shape[i];
-        let rod = self.rod();
-        let x = rod.curve.position(probe.s);
+        let structure = self.structure();
+        let x = structure.reference_position(probe);
         let u = &self.state().u;
         [
-            x[0] + rod.interpolate(u, probe.point, 0),
-            x[1] + rod.interpolate(u, probe.point, 1),
+            x[0] + structure.interpolate(u, probe, 0),
+            x[1] + structure.interpolate(u, probe, 1),
         ]
     }
 
@@ -120,8 +121,8 @@ impl Simulation {
 
     /// The trial's kinetic and strain energy, if they and the energy error are finite.
     pub(super) fn trial_energies(&self) -> Result<(f64, f64), &'static str> {
-        let kinetic = self.setup.rod.kinetic_energy(&self.trial.v);
-        let strain = self.setup.rod.strain_energy(&self.trial.u)
+        let kinetic = self.setup.structure.kinetic_energy(&self.trial.v);
+        let strain = self.setup.structure.strain_energy(&self.trial.u)
             + super::springs::base_energy(&self.setup.springs, &self.trial.u, &self.next_inputs);
         finite_energies(kinetic, strain, &self.trial_energy)
     }

@@ -5,7 +5,7 @@
 //! communication step, and only in scenes that read them.
 use super::setup::Setup;
 use super::{SimError, Simulation};
-use crate::model::Rod;
+use crate::model::{Place, Structure};
 use crate::scene::{ParamValues, Quantity, Reading, Scene, SectionQuantity};
 
 /// The section's geometry for fiber stresses: area, second moment of area, depth.
@@ -39,7 +39,8 @@ pub(super) struct Readouts {
     trial_accelerations: Vec<f64>,
     /// The trial's velocities before its last sub-step.
     velocity_before: Vec<f64>,
-    fibers: Fibers,
+    /// Per member.
+    fibers: Vec<Fibers>,
     /// `frequency[k]` in Hz (`[modes] count` of them).
     frequencies: Vec<f64>,
 }
@@ -62,7 +63,7 @@ impl Readouts {
         initial: &[f64],
     ) -> Result<Readouts, SimError> {
         let n = if reads_accelerations(scene) {
-            setup.rod.dofs()
+            setup.structure.dofs()
         } else {
             0
         };
@@ -70,8 +71,8 @@ impl Readouts {
             accelerations: vec![0.0; n],
             trial_accelerations: vec![0.0; n],
             velocity_before: vec![0.0; n],
-            fibers: Fibers::of(scene, values),
-            frequencies: natural_frequencies(&setup.rod, initial, scene.modes)?,
+            fibers: vec![Fibers::of(scene, values)],
+            frequencies: natural_frequencies(&setup.structure, initial, scene.modes)?,
         })
     }
 
@@ -123,7 +124,7 @@ impl Readouts {
 /// The `count` lowest natural frequencies (Hz) of the rod about `u` (undamped, the tangent
 /// stiffness at `u` with the held dofs removed, the mass matrix of the model); an unstable
 /// direction (`omega^2 < 0`) gives `-sqrt(-omega^2) / (2 pi)`.
-pub fn natural_frequencies(rod: &Rod, u: &[f64], count: usize) -> Result<Vec<f64>, SimError> {
+pub fn natural_frequencies(rod: &Structure, u: &[f64], count: usize) -> Result<Vec<f64>, SimError> {
     if count == 0 {
         return Ok(Vec::new());
     }
@@ -145,7 +146,6 @@ impl Simulation {
 
     /// `quantity` at arc length `s` (a sensor's or a shape sample's point `point`).
     pub fn read(&self, quantity: Quantity, point: super::setup::Probe) -> f64 {
-        let rod = self.rod();
         match quantity.reading() {
             Reading::Nodal { dof, order } => {
                 let x = match order {
@@ -153,22 +153,27 @@ impl Simulation {
                     1 => &self.state().v,
                     _ => &self.readouts.accelerations,
                 };
-                rod.interpolate(x, point.point, dof)
+                self.structure().interpolate(x, point, dof)
             }
-            Reading::Section(q) => self.section_quantity(q, point.s),
+            Reading::Section(q) => self.section_quantity(q, point),
         }
     }
 
-    /// A section quantity at arc length `s` (docs/model.md, "Section quantities").
-    pub fn section_quantity(&self, q: SectionQuantity, s: f64) -> f64 {
-        let rod = self.rod();
-        let f = rod.section_forces_at(&self.state().u, s);
+    /// A section quantity at a place of a member (docs/model.md, "Section quantities"; a
+    /// joint has no section: the scene names the member there).
+    pub fn section_quantity(&self, q: SectionQuantity, place: Place) -> f64 {
+        let Place::Member { member, s, .. } = place else {
+            unreachable!("a section quantity is read on a member (checked with the scene)")
+        };
+        let m = &self.structure().members[member];
+        let rod = &m.rod;
+        let f = rod.section_forces_at(&self.state().u[m.range()], s);
         let c = &rod.section;
         let Fibers {
             area,
             inertia,
             depth,
-        } = self.readouts.fibers;
+        } = self.readouts.fibers[member];
         match q {
             SectionQuantity::N => f.n,
             SectionQuantity::Q => f.q,

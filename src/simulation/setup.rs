@@ -5,7 +5,7 @@ use crate::model::loads::{LoadShape, LoadTime};
 use crate::model::mesh;
 use crate::model::moving_loads::{MovingLoad, MovingLoads};
 use crate::model::rod::{ROTATION, U1, U2};
-use crate::model::{LoadSet, PointOnRod, ReferenceCurve, Rod, Section};
+use crate::model::{LoadSet, Place, ReferenceCurve, Rod, Section, Structure};
 use crate::scene::{Geometry, Load, LoadKind, ParamValues, Scene, Slot, Std, TimeLaw};
 
 /// A held (constrained) degree of freedom.
@@ -22,16 +22,11 @@ pub struct Held {
     pub input: Option<usize>,
 }
 
-/// A point of the rod where something is read.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Probe {
-    pub point: PointOnRod,
-    /// Arc length.
-    pub s: f64,
-}
+/// A point of the structure where something is read.
+pub type Probe = Place;
 
 pub struct Setup {
-    pub rod: Rod,
+    pub structure: Structure,
     pub loads: LoadSet,
     /// The node of each support.
     pub support_nodes: Vec<usize>,
@@ -193,10 +188,8 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
     let loads = LoadSet::new(&rod, &shapes)
         .with_moving(MovingLoads::new(&rod.node_s, moving))
         .with_base_forces(&moving_bases);
-    let probe = |at: f64| Probe {
-        point: rod.point_at(at * length),
-        s: at * length,
-    };
+    let structure = Structure::single(rod);
+    let probe = |at: f64| structure.member_place(0, at * length);
 
     let sensors = scene.sensors.iter().map(|s| probe(s.at)).collect();
     let points = scene.shape_points;
@@ -204,7 +197,7 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
         .map(|j| probe(j as f64 / (points - 1).max(1) as f64))
         .collect();
     Setup {
-        rod,
+        structure,
         loads,
         support_nodes,
         held,

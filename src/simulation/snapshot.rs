@@ -1,6 +1,7 @@
 //! The simulation clock, the energy ledger, and snapshots: everything needed to continue a
 //! simulation exactly.
 use super::{SimError, Simulation};
+use crate::model::Assembly;
 use crate::scene::Variability;
 use serde::{Deserialize, Serialize};
 
@@ -153,7 +154,7 @@ impl Simulation {
                 self.values.elements()
             ));
         }
-        let n = self.setup.rod.dofs();
+        let n = self.setup.structure.dofs();
         if s.displacements.len() != n
             || s.velocities.len() != n
             || s.values.len() != self.values.0.len()
@@ -231,7 +232,7 @@ impl Simulation {
         self.input_derivatives.fill(None);
         self.loads_stale = true;
         self.energy = EnergyLedger {
-            initial_energy: self.setup.rod.strain_energy(&self.initial.u)
+            initial_energy: self.setup.structure.strain_energy(&self.initial.u)
                 + super::springs::base_energy(&self.setup.springs, &self.initial.u, &self.inputs),
             ..EnergyLedger::default()
         };

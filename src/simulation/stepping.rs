@@ -4,6 +4,7 @@
 //! reactions of each sub-step booked on the way.
 use super::{setup, supports, SimError, Simulation};
 use crate::integrator::NewtonFailure;
+use crate::model::Assembly;
 
 /// How often a failing sub-step is halved before a communication step is given up.
 pub const MAX_STEP_CUTS: u32 = 5;
@@ -164,7 +165,14 @@ impl Simulation {
             let s = &self.setup;
             let stats = self
                 .integrator
-                .step(&s.rod, &s.loads, &mut self.trial, t_k, dt, &self.prescribed)
+                .step(
+                    &s.structure,
+                    &s.loads,
+                    &mut self.trial,
+                    t_k,
+                    dt,
+                    &self.prescribed,
+                )
                 .map_err(|e: NewtonFailure| e.to_string())?;
             iterations += stats.iterations;
             factorizations += stats.factorizations;
@@ -198,7 +206,7 @@ impl Simulation {
         let ledger = &mut self.trial_energy;
         ledger.external_work += external;
         ledger.input_work += input;
-        ledger.dissipated += self.setup.rod.dissipation_rate(du) / dt;
+        ledger.dissipated += self.setup.structure.dissipation_rate(du) / dt;
         supports::book_reactions(
             &self.setup,
             &self.integrator,

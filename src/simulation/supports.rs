@@ -44,23 +44,23 @@ impl MotionPath {
     }
 }
 use crate::integrator::{DynamicState, Midpoint};
-use crate::model::Rod;
-use crate::solver::BlockTridiagonal;
+use crate::model::{Assembly, Structure};
+use crate::solver::SystemMatrix;
 
 /// The mass matrix with the held dofs removed, factored, and scratch vectors (made once).
-pub struct MotionSolver {
-    mass: BlockTridiagonal,
+pub struct MotionSolver<A: Assembly> {
+    mass: A::Matrix,
     dv: Vec<f64>,
     impulse: Vec<f64>,
 }
 
-impl MotionSolver {
+impl<A: Assembly> MotionSolver<A> {
     /// Fails when the mass matrix cannot be factored (a density or section so small that the
     /// masses underflow).
-    pub fn new(rod: &Rod) -> Result<MotionSolver, String> {
-        let mut mass = BlockTridiagonal::new(rod.nodes());
+    pub fn new(rod: &A) -> Result<MotionSolver<A>, String> {
+        let mut mass = rod.new_matrix();
         rod.add_mass(&mut mass, 1.0);
-        mass.constrain(rod.constrained());
+        rod.constrain(&mut mass);
         mass.factor().map_err(|e| {
             format!("the mass matrix has a {e}: rho A or rho I too small to be represented")
         })?;
@@ -76,7 +76,7 @@ impl MotionSolver {
     /// `impulses` and its work in `ledger`.
     pub fn change_speeds(
         &mut self,
-        rod: &Rod,
+        rod: &A,
         held: &[Held],
         speeds: &[f64],
         state: &mut DynamicState,
@@ -119,7 +119,7 @@ impl MotionSolver {
 /// equation of motion, see `Midpoint::held_rows`) and the supports' work over it.
 pub fn book_reactions(
     setup: &Setup,
-    integrator: &Midpoint,
+    integrator: &Midpoint<Structure>,
     dt: f64,
     impulses: &mut [[f64; 3]],
     ledger: &mut EnergyLedger,
@@ -138,12 +138,21 @@ pub fn book_reactions(
 /// component, the bases at `inputs`), booked like a reaction over the steps (see
 /// `Simulation::book_springs`).
 pub fn static_reactions(setup: &Setup, u: &[f64], inputs: &[f64]) -> Vec<[f64; 3]> {
-    let rod = &setup.rod;
+    let rod = &setup.structure;
+    // A frame's rows are its members' folded: the whole internal force, once.
+    let full = (!rod.is_single()).then(|| {
+        let mut f = vec![0.0; rod.dofs()];
+        rod.internal_force(u, &mut f);
+        f
+    });
     let supports = setup.support_nodes.iter().map(|&node| {
-        let f = rod.node_internal_force(u, node);
+        let f = match &full {
+            None => rod.rod().node_internal_force(u, node),
+            Some(f) => Structure::node_rows(f, node),
+        };
         let mut r = [0.0; 3];
         for c in 0..3 {
-            if rod.fixed[3 * node + c] {
+            if rod.is_held(3 * node + c) {
                 r[c] = f[c] - setup.loads.constant_at(3 * node + c);
             }
         }
@@ -178,7 +187,7 @@ impl Simulation {
             *speed = path.initial_speed();
         }
         motion.change_speeds(
-            &self.setup.rod,
+            &self.setup.structure,
             &self.setup.held,
             &self.motion_speeds,
             &mut self.trial,

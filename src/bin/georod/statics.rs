@@ -58,7 +58,7 @@ fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
         .collect();
     let u0 =
         initial::initial_displacements(&scene, &values, &s, &inputs).map_err(|e| e.to_string())?;
-    let rod = s.rod;
+    let rod = s.structure.rod().clone();
     let length = rod.curve.length();
     let load = &scene.loads[path_load(&scene, o)?];
     let shape = setup::load_shape(load, length, false);

@@ -2,18 +2,18 @@
 //! re-solved on the path (secant predictor, arc-length corrector), so a change along the
 //! increment (of the tangent's inertia, of the side of a load) is bracketed to round-off.
 use super::{correct, ContinuationSettings, Path, PathPoint, Work};
-use crate::model::Rod;
-use crate::solver::BlockTridiagonal;
+use crate::model::Assembly;
+use crate::solver::SystemMatrix;
 
 /// A point of the path re-solved at arc length `s` from `path.points[i - 1]` towards
 /// `path.points[i]` (secant predictor, then the arc-length corrector).
-fn resolve_partial(
-    rod: &Rod,
+fn resolve_partial<A: Assembly>(
+    rod: &A,
     q: &[f64],
     path: &Path,
     i: usize,
     s: f64,
-    w: &mut Work,
+    w: &mut Work<A>,
     settings: &ContinuationSettings,
 ) -> Option<PathPoint> {
     let (a, b) = (&path.points[i - 1], &path.points[i]);
@@ -46,26 +46,21 @@ fn dot_diff(a: &[f64], b: &[f64]) -> f64 {
 /// Bisection on the arc length of increment `i` for the first point where `flip` turns true
 /// (`flip` is false at `path.points[i - 1]`, true at `path.points[i]`). Returns the last points
 /// before and after, and the bracket length.
-pub(super) fn bisect(
-    rod: &Rod,
+pub(super) fn bisect<A: Assembly>(
+    rod: &A,
     q: &[f64],
     path: &Path,
     i: usize,
     settings: &ContinuationSettings,
     flip: impl Fn(&PathPoint) -> bool,
 ) -> (PathPoint, PathPoint, f64) {
-    let mut w = Work {
-        jac: BlockTridiagonal::new(rod.nodes()),
-        f: vec![0.0; rod.dofs()],
-        du_q: vec![0.0; rod.dofs()],
-        du_r: vec![0.0; rod.dofs()],
-    };
+    let mut w = Work::new(rod);
     let chord = dot_diff(&path.points[i].u, &path.points[i - 1].u).sqrt();
     let (mut lo, mut hi) = (0.0, chord);
     let mut before = path.points[i - 1].clone();
     let mut after = path.points[i].clone();
     for _ in 0..60 {
-        if hi - lo <= 1e-13 * chord.max(1e-300) + 1e-15 * rod.curve.length() {
+        if hi - lo <= 1e-13 * chord.max(1e-300) + 1e-15 * rod.length_scale() {
             break;
         }
         let mid = 0.5 * (lo + hi);

@@ -3,8 +3,8 @@
 //! ([`refine_critical_points`]), and classified as limit points or bifurcations.
 use super::bisection::bisect;
 use super::{dot, ContinuationSettings, Path, Work};
-use crate::model::Rod;
-use crate::solver::BlockTridiagonal;
+use crate::model::Assembly;
+use crate::solver::SystemMatrix;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CriticalKind {
@@ -79,13 +79,9 @@ pub struct RefinedCritical {
 }
 
 /// `K_T(u)^-1 q` (None if singular).
-fn tangent_direction(rod: &Rod, q: &[f64], u: &[f64]) -> Option<Vec<f64>> {
-    let mut w = Work {
-        jac: BlockTridiagonal::new(rod.nodes()),
-        f: vec![0.0; rod.dofs()],
-        du_q: q.to_vec(),
-        du_r: vec![0.0; rod.dofs()],
-    };
+fn tangent_direction<A: Assembly>(rod: &A, q: &[f64], u: &[f64]) -> Option<Vec<f64>> {
+    let mut w = Work::new(rod);
+    w.du_q.copy_from_slice(q);
     if !w.factor(rod, u) {
         return None;
     }
@@ -96,8 +92,8 @@ fn tangent_direction(rod: &Rod, q: &[f64], u: &[f64]) -> Option<Vec<f64>> {
 /// Every critical point of `path` (a change of the number of negative tangent eigenvalues between
 /// consecutive points) located by bisection on the arc length, and classified by the tangent:
 /// a limit point where the load component of the oriented path tangent changes sign.
-pub fn refine_critical_points(
-    rod: &Rod,
+pub fn refine_critical_points<A: Assembly>(
+    rod: &A,
     q: &[f64],
     path: &Path,
     settings: &ContinuationSettings,

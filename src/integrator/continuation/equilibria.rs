@@ -2,8 +2,8 @@
 //! arch): each crossing bracketed by bisection, then solved by Newton at exactly that load.
 use super::bisection::bisect;
 use super::{ContinuationSettings, Path};
-use crate::model::Rod;
-use crate::solver::BlockTridiagonal;
+use crate::model::Assembly;
+use crate::solver::SystemMatrix;
 
 /// An equilibrium of the path at a prescribed load.
 #[derive(Clone, Debug, PartialEq)]
@@ -17,8 +17,8 @@ pub struct Equilibrium {
 
 /// Every equilibrium where `path` crosses `load`: bisection on the arc length of the crossing
 /// increment, then Newton at exactly `load` (fixed load) from the bracketing point.
-pub fn equilibria_at_load(
-    rod: &Rod,
+pub fn equilibria_at_load<A: Assembly>(
+    rod: &A,
     q: &[f64],
     path: &Path,
     load: f64,
@@ -49,10 +49,10 @@ pub fn equilibria_at_load(
         if solver.solve(rod, &mut u, &f_ext).is_err() {
             continue;
         }
-        let mut jac = BlockTridiagonal::new(rod.nodes());
+        let mut jac = rod.new_matrix();
         let mut f = vec![0.0; rod.dofs()];
         rod.internal_force_and_tangent(&u, &mut f, &mut jac, 1.0);
-        jac.constrain(rod.constrained());
+        rod.constrain(&mut jac);
         let negative = if jac.factor_with_inertia().is_ok() {
             jac.negative_eigenvalues()
         } else {

@@ -28,9 +28,9 @@ pub use critical::{
 pub use equilibria::{equilibria_at_load, Equilibrium};
 
 use super::newton::NewtonSettings;
-use crate::model::Rod;
+use crate::model::Assembly;
 use crate::solver::vector::inf_norm;
-use crate::solver::BlockTridiagonal;
+use crate::solver::SystemMatrix;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContinuationSettings {
@@ -52,8 +52,8 @@ pub struct ContinuationSettings {
 }
 
 impl ContinuationSettings {
-    pub fn for_rod(rod: &Rod, max_load: f64) -> ContinuationSettings {
-        let length = rod.curve.length();
+    pub fn for_rod<A: Assembly>(rod: &A, max_load: f64) -> ContinuationSettings {
+        let length = rod.length_scale();
         ContinuationSettings {
             arc_length: 1e-3 * length,
             min_arc_length: 1e-7 * length,
@@ -89,19 +89,28 @@ pub struct Path {
 }
 
 /// Buffers of the continuation.
-struct Work {
-    jac: BlockTridiagonal,
+struct Work<A: Assembly> {
+    jac: A::Matrix,
     f: Vec<f64>,
     du_q: Vec<f64>,
     du_r: Vec<f64>,
 }
 
-impl Work {
+impl<A: Assembly> Work<A> {
+    fn new(rod: &A) -> Work<A> {
+        Work {
+            jac: rod.new_matrix(),
+            f: vec![0.0; rod.dofs()],
+            du_q: vec![0.0; rod.dofs()],
+            du_r: vec![0.0; rod.dofs()],
+        }
+    }
+
     /// Factors `K_T(u)` and returns `f_int(u)` in `self.f`.
-    fn factor(&mut self, rod: &Rod, u: &[f64]) -> bool {
+    fn factor(&mut self, rod: &A, u: &[f64]) -> bool {
         self.jac.set_zero();
         rod.internal_force_and_tangent(u, &mut self.f, &mut self.jac, 1.0);
-        self.jac.constrain(rod.constrained());
+        rod.constrain(&mut self.jac);
         self.jac.factor_with_inertia().is_ok()
     }
 }
@@ -111,8 +120,8 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Follows the equilibrium path `f_int(u) = lambda q` from the equilibrium `u0` at `lambda0`.
-pub fn follow_path(
-    rod: &Rod,
+pub fn follow_path<A: Assembly>(
+    rod: &A,
     u0: &[f64],
     load0: f64,
     q: &[f64],
@@ -121,12 +130,7 @@ pub fn follow_path(
     let n = rod.dofs();
     let mut q = q.to_vec();
     rod.zero_constrained(&mut q);
-    let mut w = Work {
-        jac: BlockTridiagonal::new(rod.nodes()),
-        f: vec![0.0; n],
-        du_q: vec![0.0; n],
-        du_r: vec![0.0; n],
-    };
+    let mut w = Work::new(rod);
     let mut path = Path::default();
     if !w.factor(rod, u0) {
         path.stop_reason = "singular tangent at the start".into();
@@ -204,15 +208,15 @@ pub fn follow_path(
 /// Newton corrector on the arc-length constraint `|du| = dl`; returns the iterations, with
 /// `u = u_last + du` and `dload` updated, or `None` if it fails.
 #[allow(clippy::too_many_arguments)]
-fn correct(
-    rod: &Rod,
+fn correct<A: Assembly>(
+    rod: &A,
     q: &[f64],
     last: &PathPoint,
     du: &mut [f64],
     dload: &mut f64,
     dl: f64,
     u: &mut [f64],
-    w: &mut Work,
+    w: &mut Work<A>,
     settings: &ContinuationSettings,
 ) -> Option<u32> {
     for iteration in 1..=settings.newton.max_iterations {
@@ -279,8 +283,8 @@ fn correct(
 /// with `settings` but its own `initial_direction`), joined into one path that runs from the end
 /// of the decreasing half through the start to the end of the increasing half. The start point
 /// is at index `.1`.
-pub fn follow_both_ways(
-    rod: &Rod,
+pub fn follow_both_ways<A: Assembly>(
+    rod: &A,
     u0: &[f64],
     load0: f64,
     q: &[f64],

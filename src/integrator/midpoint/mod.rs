@@ -18,9 +18,8 @@ use super::newton::{
     chord_correction, newton_correction, Factorization, NewtonFailure, NewtonSettings, NewtonStats,
 };
 use super::tangent_map::TangentMap;
-use crate::model::{LoadSet, Rod};
+use crate::model::{Assembly, LoadSet};
 use crate::solver::vector::update_and_norm;
-use crate::solver::BlockTridiagonal;
 use residual::{motion, Tangent};
 use serde::{Deserialize, Serialize};
 
@@ -84,22 +83,22 @@ fn error_after(c: f64, previous: Option<f64>) -> f64 {
 }
 
 #[derive(Clone, Debug)]
-pub struct Midpoint {
+pub struct Midpoint<A: Assembly = crate::model::Rod> {
     pub settings: NewtonSettings,
     pub scheme: Scheme,
     /// Reuse the last factorized Jacobian for further corrections while they contract fast
     /// (see [`Midpoint::step`]); `false` gives plain Newton, one factorization per correction.
     pub reuse_factorization: bool,
     /// The Jacobian of the Newton corrections (and of the chord corrections that reuse it).
-    jac: BlockTridiagonal,
+    jac: A::Matrix,
     /// The tangent map's systems that a step solves besides its own (Lyapunov exponents; see
     /// [`Midpoint::tangent_map_mut`]). Solving them does not change the step's result.
-    tangents: TangentMap,
+    tangents: TangentMap<A>,
     /// The Jacobian at the last chord correction's iterate, where the tangent map's
     /// refinement cannot be trusted ([`TangentMap::refine`]).
-    linear: BlockTridiagonal,
+    linear: A::Matrix,
     /// `2/dt^2 M + C/dt` for `dynamic_dt`: the constant part of the Jacobian.
-    dynamic_part: BlockTridiagonal,
+    dynamic_part: A::Matrix,
     dynamic_dt: f64,
     du: Vec<f64>,
     /// The state at which the residual was last evaluated.
@@ -114,21 +113,21 @@ pub struct Midpoint {
     /// Held dofs whose rows of the equation of motion each step keeps, and those rows.
     held: Vec<usize>,
     held_rows: Vec<f64>,
-    /// Rows of `dynamic_part` at the held dofs: (first column, the up to 9 entries).
-    held_stencils: Vec<(usize, [f64; 9])>,
+    /// Rows of `dynamic_part` at the held dofs: (column, entry) pairs.
+    held_stencils: Vec<Vec<(usize, f64)>>,
 }
 
-impl Midpoint {
-    pub fn new(rod: &Rod) -> Midpoint {
+impl<A: Assembly> Midpoint<A> {
+    pub fn new(rod: &A) -> Midpoint<A> {
         let n = rod.dofs();
         Midpoint {
-            settings: NewtonSettings::tight(rod.curve.length()),
+            settings: NewtonSettings::tight(rod.length_scale()),
             scheme: Scheme::Midpoint,
             reuse_factorization: true,
-            jac: BlockTridiagonal::new(rod.nodes()),
+            jac: rod.new_matrix(),
             tangents: TangentMap::default(),
-            linear: BlockTridiagonal::new(rod.nodes()),
-            dynamic_part: BlockTridiagonal::new(rod.nodes()),
+            linear: rod.new_matrix(),
+            dynamic_part: rod.new_matrix(),
             dynamic_dt: f64::NAN,
             du: vec![0.0; n],
             u_mid: vec![0.0; n],
@@ -147,7 +146,7 @@ impl Midpoint {
     pub fn keep_rows(&mut self, dofs: &[usize]) {
         self.held = dofs.to_vec();
         self.held_rows = vec![0.0; dofs.len()];
-        self.held_stencils = vec![(0, [0.0; 9]); dofs.len()];
+        self.held_stencils = vec![Vec::new(); dofs.len()];
     }
 
     /// The rows of the kept dofs of the equation of motion `M (v_(n+1) - v_n)/dt + C du/dt +
@@ -180,7 +179,7 @@ impl Midpoint {
     /// step where testing the last correction itself took three).
     pub fn step(
         &mut self,
-        rod: &Rod,
+        rod: &A,
         loads: &LoadSet,
         state: &mut DynamicState,
         t_n: f64,
@@ -336,16 +335,16 @@ impl Midpoint {
 
     /// The tangent map's systems that the next steps solve besides their own (reserve them
     /// first with [`Midpoint::reserve_tangents`]); their solutions after a step.
-    pub fn tangent_map_mut(&mut self) -> &mut TangentMap {
+    pub fn tangent_map_mut(&mut self) -> &mut TangentMap<A> {
         &mut self.tangents
     }
 
-    pub fn tangent_map(&self) -> &TangentMap {
+    pub fn tangent_map(&self) -> &TangentMap<A> {
         &self.tangents
     }
 
     /// Room for `count` tangent-map systems (allocates: call before stepping).
-    pub fn reserve_tangents(&mut self, count: usize, rod: &Rod) {
+    pub fn reserve_tangents(&mut self, count: usize, rod: &A) {
         self.tangents.reserve(count, rod);
     }
 
@@ -364,9 +363,9 @@ impl Midpoint {
     /// linear part `(2/dt^2 M + C/dt) c` of the last correction `c` (in `residual`), from the
     /// rows of the cached `dynamic_part`.
     fn update_held_rows(&mut self) {
-        for (row, (first, entries)) in self.held_rows.iter_mut().zip(&self.held_stencils) {
-            let c = &self.residual[*first..];
-            *row += entries.iter().zip(c).map(|(a, x)| a * x).sum::<f64>();
+        for (row, entries) in self.held_rows.iter_mut().zip(&self.held_stencils) {
+            let c = &self.residual;
+            *row += entries.iter().map(|&(j, a)| a * c[j]).sum::<f64>();
         }
     }
 }

@@ -5,7 +5,8 @@
 use super::{DynamicState, Midpoint, Scheme};
 use crate::model::element::cayley;
 use crate::model::rod::ROTATION;
-use crate::model::{LoadSet, Rod};
+use crate::model::{Assembly, LoadSet};
+use crate::solver::SystemMatrix;
 
 /// The increment that the velocities average over a step: `du` itself, except for rotations in
 /// the energy-momentum scheme, whose angular velocity is `2 tan(dw / 2) / dt` (Cayley): with it
@@ -28,14 +29,14 @@ pub(super) enum Tangent {
     Elements,
 }
 
-impl Midpoint {
+impl<A: Assembly> Midpoint<A> {
     /// Before the iteration of a step of size `dt` from `t_n`: the constant part of the
     /// Jacobian (when `dt` changed), what the residual takes from the start of the step
     /// (`-2/dt v_n`, `-f_ext(t_n + dt/2)`) and the predictor (constant velocity; held dofs by
     /// their `prescribed` increments).
     pub(super) fn prepare(
         &mut self,
-        rod: &Rod,
+        rod: &A,
         loads: &LoadSet,
         state: &DynamicState,
         t_n: f64,
@@ -49,7 +50,7 @@ impl Midpoint {
             rod.add_damping(&mut self.dynamic_part, c);
             self.dynamic_dt = dt;
             for (stencil, &dof) in self.held_stencils.iter_mut().zip(&self.held) {
-                *stencil = self.dynamic_part.row_stencil(dof);
+                *stencil = self.dynamic_part.row_entries(dof);
             }
         }
         self.load.fill(0.0);
@@ -66,7 +67,7 @@ impl Midpoint {
 
     /// The residual `R(du)` at the current `du` into `residual` and the Jacobian where
     /// `tangent` says (constraints not yet applied).
-    pub(super) fn residual(&mut self, rod: &Rod, state: &DynamicState, dt: f64, tangent: Tangent) {
+    pub(super) fn residual(&mut self, rod: &A, state: &DynamicState, dt: f64, tangent: Tangent) {
         let mut jac = (tangent == Tangent::Iteration).then_some(&mut self.jac);
         if let Some(j) = jac.as_deref_mut() {
             j.copy_from(&self.dynamic_part);
@@ -137,6 +138,10 @@ impl Midpoint {
                     *r += l;
                 }
             }
+        }
+        if rod.has_state_damping() {
+            let jac = (tangent == Tangent::Iteration).then_some(&mut self.jac);
+            rod.add_state_damping(&state.u, &self.du, dt, &mut self.residual, jac);
         }
         for (row, &dof) in self.held_rows.iter_mut().zip(&self.held) {
             *row = self.residual[dof];

@@ -142,6 +142,32 @@ impl BlockTridiagonal {
         }
     }
 
+    /// Removes the motion of `node`'s translation along the unit vector `n` (a support on an
+    /// incline): with `P = I - n n^T` on the node's `u1`, `u2`, its block row becomes `P A`, its
+    /// block column `A P` and its diagonal block `P A P + n n^T`, so a solution's component
+    /// along `n` is zero (its right-hand side's must be too) and a symmetric matrix stays
+    /// symmetric.
+    pub fn constrain_direction(&mut self, node: usize, n: [f64; 2]) {
+        debug_assert!(!self.factored);
+        let mut p = Matrix3::identity();
+        let mut nn = Matrix3::zeros();
+        for r in 0..2 {
+            for c in 0..2 {
+                nn[(r, c)] = n[r] * n[c];
+            }
+        }
+        p -= nn;
+        self.diag[node] = p * self.diag[node] * p + nn;
+        if node + 1 < self.blocks() {
+            self.upper[node] = p * self.upper[node];
+            self.lower[node] *= p;
+        }
+        if node > 0 {
+            self.upper[node - 1] *= p;
+            self.lower[node - 1] = p * self.lower[node - 1];
+        }
+    }
+
     /// `out = A x` (before factorization).
     pub fn mul(&self, x: &[f64], out: &mut [f64]) {
         debug_assert!(!self.factored);

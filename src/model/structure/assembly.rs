@@ -1,0 +1,633 @@
+//! The structure as the integrators see it ([`Assembly`]): a single member hands every call to
+//! its rod (the same code as a lone rod's); a frame runs each member's rod on its slice of the
+//! vectors, adds the bars, links and joint terms, and folds the slaves' rows into their joints'.
+use super::matrix::{add_axial_block, add_axial_pattern, MemberSink, StructureMatrix};
+use super::{Structure, StructureTangents};
+use crate::model::assembly::Assembly;
+use crate::model::bands::Scaled;
+use crate::model::element::ElementTangent;
+use crate::solver::sparse_blocks::SparseBlocks;
+use crate::solver::SystemMatrix;
+use nalgebra::{Matrix2, Vector2};
+
+impl Structure {
+    /// The matrix of a frame (panics for a single member).
+    fn graph_matrix(jac: &mut StructureMatrix) -> &mut SparseBlocks {
+        match jac {
+            StructureMatrix::Graph(m) => m,
+            StructureMatrix::Chain(_) => panic!("a frame's matrix is block-sparse"),
+        }
+    }
+
+    /// Runs `each(member index, rod's slice of x, rod's slice of out)` over the members, after
+    /// zeroing the joints' rows of `out` when `overwrite` (the members write their own).
+    fn for_members(
+        &self,
+        x: &[f64],
+        out: &mut [f64],
+        overwrite: bool,
+        mut each: impl FnMut(usize, &crate::model::Rod, &[f64], &mut [f64]),
+    ) {
+        if overwrite {
+            out[..3 * self.joints.len()].fill(0.0);
+        }
+        for (i, m) in self.members.iter().enumerate() {
+            let r = m.range();
+            each(i, &m.rod, &x[r.clone()], &mut out[r]);
+        }
+    }
+
+    /// `out += scale * (K_nodal x)`: the joint springs.
+    fn add_spring_force(&self, x: &[f64], out: &mut [f64], scale: f64) {
+        for &(d, k) in &self.nodal.springs {
+            out[d] += scale * k * x[d];
+        }
+    }
+
+    /// `out += M_extra (a x + b y) + c C_extra x`: the bars' mass and damping and the joint
+    /// masses and dashpots.
+    fn add_extra_bracket(&self, ((a, x), (b, y)): (Scaled, Scaled), c: f64, out: &mut [f64]) {
+        let bracket = |d: usize| a * x[d] + b * y[d];
+        for &(d, m) in &self.nodal.masses {
+            out[d] += m * bracket(d);
+        }
+        for &(d, damping) in &self.nodal.dashpots {
+            out[d] += c * damping * x[d];
+        }
+        for bar in &self.axial {
+            bar.add_pattern_times(bar.mass, self.lumped, x, out, a);
+            bar.add_pattern_times(bar.mass, self.lumped, y, out, b);
+            bar.add_pattern_times(bar.damping, self.lumped, x, out, c);
+        }
+        if let Some((beta, tangents)) = &self.rayleigh {
+            self.add_spring_force(x, out, c * beta);
+            for (bar, k) in self.axial.iter().zip(tangents) {
+                add_block_times(bar.nodes, k, x, out, c * beta);
+            }
+        }
+    }
+
+    fn add_extra_mass(&self, jac: &mut SparseBlocks, scale: f64) {
+        for &(d, m) in &self.nodal.masses {
+            jac.add_diagonal(d, scale * m);
+        }
+        for bar in &self.axial {
+            add_axial_pattern(jac, bar.nodes, bar.mass, self.lumped, scale);
+        }
+    }
+
+    fn add_extra_damping(&self, jac: &mut SparseBlocks, scale: f64) {
+        for &(d, c) in &self.nodal.dashpots {
+            jac.add_diagonal(d, scale * c);
+        }
+        for bar in &self.axial {
+            add_axial_pattern(jac, bar.nodes, bar.damping, self.lumped, scale);
+        }
+        if let Some((beta, tangents)) = &self.rayleigh {
+            for &(d, k) in &self.nodal.springs {
+                jac.add_diagonal(d, scale * beta * k);
+            }
+            for (bar, k) in self.axial.iter().zip(tangents) {
+                add_axial_block(jac, bar.nodes, k, scale * beta);
+            }
+        }
+    }
+
+    /// The bars', links' and joint springs' force at `u` into `f`, with their tangent into
+    /// `jac` (and kept) where given.
+    fn add_extra_force(
+        &self,
+        u: &[f64],
+        f: &mut [f64],
+        mut jac: Option<(&mut SparseBlocks, f64)>,
+        mut kept: Option<&mut Vec<Matrix2<f64>>>,
+    ) {
+        for (i, a) in self.axial.iter().enumerate() {
+            let (force, k) = a.force_and_tangent(u);
+            a.add_end_force(force, f, 1.0);
+            if let Some((m, scale)) = jac.as_mut() {
+                add_axial_block(m, a.nodes, &k, *scale);
+            }
+            if let Some(kept) = kept.as_mut() {
+                kept[i] = k;
+            }
+        }
+        self.add_spring_force(u, f, 1.0);
+        if let Some((m, scale)) = jac {
+            for &(d, k) in &self.nodal.springs {
+                m.add_diagonal(d, scale * k);
+            }
+        }
+    }
+}
+
+/// `out += scale * [[K, -K], [-K, K]] x` on the translations of `nodes`.
+fn add_block_times(nodes: [usize; 2], k: &Matrix2<f64>, x: &[f64], out: &mut [f64], scale: f64) {
+    let [a, b] = nodes;
+    let d = Vector2::new(x[3 * b] - x[3 * a], x[3 * b + 1] - x[3 * a + 1]);
+    let f = scale * (k * d);
+    for r in 0..2 {
+        out[3 * a + r] -= f[r];
+        out[3 * b + r] += f[r];
+    }
+}
+
+impl Assembly for Structure {
+    type Matrix = StructureMatrix;
+    type Tangents = StructureTangents;
+
+    fn dofs(&self) -> usize {
+        self.dofs
+    }
+
+    fn new_matrix(&self) -> StructureMatrix {
+        match &self.graph {
+            None => StructureMatrix::Chain(self.rod().new_matrix()),
+            Some(g) => StructureMatrix::Graph(g.new_matrix()),
+        }
+    }
+
+    fn new_tangents(&self) -> StructureTangents {
+        StructureTangents {
+            members: (self.members.iter())
+                .map(|m| vec![ElementTangent::default(); m.rod.elements.len()])
+                .collect(),
+            axial: vec![Matrix2::zeros(); self.axial.len()],
+        }
+    }
+
+    fn length_scale(&self) -> f64 {
+        if self.is_single() {
+            return self.rod().curve.length();
+        }
+        // The largest extent of the structure's reference state.
+        let points = (self.joints.iter().copied()).chain(self.members.iter().flat_map(|m| {
+            (0..m.rod.nodes()).map(move |i| m.rod.reference_position(m.rod.node_s[i]))
+        }));
+        let (mut lo, mut hi) = (
+            Vector2::repeat(f64::INFINITY),
+            Vector2::repeat(f64::NEG_INFINITY),
+        );
+        for p in points {
+            lo = lo.inf(&p);
+            hi = hi.sup(&p);
+        }
+        (hi - lo).norm()
+    }
+
+    fn bending_scale(&self) -> f64 {
+        if self.is_single() {
+            return self.rod().bending_scale();
+        }
+        // The softest member's (bars: their axial `E / (rho L^2)`): the scale of the lowest
+        // eigenvalues.
+        let members = self.members.iter().map(|m| m.rod.bending_scale());
+        let bars = (self.axial.iter())
+            .filter(|a| a.mass > 0.0)
+            .map(|a| a.k / (6.0 * a.mass));
+        members.chain(bars).fold(f64::INFINITY, f64::min)
+    }
+
+    fn constrained(&self) -> &[usize] {
+        &self.eliminated
+    }
+
+    fn zero_constrained(&self, x: &mut [f64]) {
+        self.zero_held(x);
+    }
+
+    fn constrain(&self, jac: &mut StructureMatrix) {
+        jac.constrain(&self.eliminated);
+        for &(node, n) in &self.directions {
+            jac.constrain_direction(node, n);
+        }
+    }
+
+    fn internal_force(&self, u: &[f64], f: &mut [f64]) {
+        if self.is_single() {
+            return self.rod().internal_force(u, f);
+        }
+        self.for_members(u, f, true, |_, rod, u, f| rod.internal_force(u, f));
+        self.add_extra_force(u, f, None, None);
+        self.fold(f);
+    }
+
+    fn internal_force_and_tangent(
+        &self,
+        u: &[f64],
+        f: &mut [f64],
+        jac: &mut StructureMatrix,
+        scale: f64,
+    ) {
+        if let StructureMatrix::Chain(m) = jac {
+            return self.rod().internal_force_and_tangent(u, f, m, scale);
+        }
+        let g = self.graph.as_ref().expect("a frame");
+        let matrix = Self::graph_matrix(jac);
+        self.for_members(u, f, true, |i, rod, u, f| {
+            let mut sink = MemberSink {
+                matrix,
+                route: g.route(i),
+            };
+            rod.internal_force_and_tangent(u, f, &mut sink, scale);
+        });
+        self.add_extra_force(u, f, Some((matrix, scale)), None);
+        self.fold(f);
+    }
+
+    fn internal_force_and_tangent_kept(
+        &self,
+        u: &[f64],
+        f: &mut [f64],
+        jac: &mut StructureMatrix,
+        scale: f64,
+        kept: &mut StructureTangents,
+    ) {
+        if let StructureMatrix::Chain(m) = jac {
+            return self.rod().internal_force_and_tangent_kept(
+                u,
+                f,
+                m,
+                scale,
+                &mut kept.members[0],
+            );
+        }
+        let g = self.graph.as_ref().expect("a frame");
+        let matrix = Self::graph_matrix(jac);
+        let members = &mut kept.members;
+        self.for_members(u, f, true, |i, rod, u, f| {
+            let mut sink = MemberSink {
+                matrix,
+                route: g.route(i),
+            };
+            rod.internal_force_and_tangent_kept(u, f, &mut sink, scale, &mut members[i]);
+        });
+        self.add_extra_force(u, f, Some((matrix, scale)), Some(&mut kept.axial));
+        self.fold(f);
+    }
+
+    fn internal_force_and_element_tangents(
+        &self,
+        u: &[f64],
+        f: &mut [f64],
+        kept: &mut StructureTangents,
+    ) {
+        if self.is_single() {
+            return self
+                .rod()
+                .internal_force_and_element_tangents(u, f, &mut kept.members[0]);
+        }
+        let members = &mut kept.members;
+        self.for_members(u, f, true, |i, rod, u, f| {
+            rod.internal_force_and_element_tangents(u, f, &mut members[i]);
+        });
+        self.add_extra_force(u, f, None, Some(&mut kept.axial));
+        self.fold(f);
+    }
+
+    fn tangent_change_times(
+        &self,
+        (k1, k0): (&StructureTangents, &StructureTangents),
+        y: &[f64],
+        out: &mut [f64],
+        scale: f64,
+    ) {
+        if self.is_single() {
+            return self.rod().tangent_change_times(
+                (&k1.members[0], &k0.members[0]),
+                y,
+                out,
+                scale,
+            );
+        }
+        self.for_members(y, out, true, |i, rod, y, out| {
+            rod.tangent_change_times((&k1.members[i], &k0.members[i]), y, out, scale);
+        });
+        for ((a, t1), t0) in self.axial.iter().zip(&k1.axial).zip(&k0.axial) {
+            add_block_times(a.nodes, &(t1 - t0), y, out, scale);
+        }
+        self.fold(out);
+    }
+
+    fn add_kept_tangents(&self, jac: &mut StructureMatrix, kept: &StructureTangents, scale: f64) {
+        if let StructureMatrix::Chain(m) = jac {
+            return self.rod().add_kept_tangents(m, &kept.members[0], scale);
+        }
+        let g = self.graph.as_ref().expect("a frame");
+        let matrix = Self::graph_matrix(jac);
+        for (i, m) in self.members.iter().enumerate() {
+            let mut sink = MemberSink {
+                matrix,
+                route: g.route(i),
+            };
+            for (e, ke) in kept.members[i].iter().enumerate() {
+                crate::solver::PairSink::add_pair(&mut sink, e, ke, scale);
+            }
+            m.rod.add_attached_stiffness(&mut sink, scale);
+        }
+        for (a, k) in self.axial.iter().zip(&kept.axial) {
+            add_axial_block(matrix, a.nodes, k, scale);
+        }
+        for &(d, k) in &self.nodal.springs {
+            matrix.add_diagonal(d, scale * k);
+        }
+    }
+
+    fn discrete_gradient(&self, ua: &[f64], ub: &[f64], f: &mut [f64]) {
+        if self.is_single() {
+            return self.rod().discrete_gradient(ua, ub, f);
+        }
+        f[..3 * self.joints.len()].fill(0.0);
+        for m in &self.members {
+            let r = m.range();
+            m.rod
+                .discrete_gradient(&ua[r.clone()], &ub[r.clone()], &mut f[r]);
+        }
+        for a in &self.axial {
+            a.add_end_force(a.discrete_gradient(ua, ub), f, 1.0);
+        }
+        self.add_spring_force(ua, f, 0.5);
+        self.add_spring_force(ub, f, 0.5);
+        self.fold(f);
+    }
+
+    fn discrete_gradient_and_tangent(
+        &self,
+        ua: &[f64],
+        ub: &[f64],
+        f: &mut [f64],
+        jac: &mut StructureMatrix,
+        scale: f64,
+    ) {
+        if let StructureMatrix::Chain(m) = jac {
+            return self
+                .rod()
+                .discrete_gradient_and_tangent(ua, ub, f, m, scale);
+        }
+        let g = self.graph.as_ref().expect("a frame");
+        let matrix = Self::graph_matrix(jac);
+        f[..3 * self.joints.len()].fill(0.0);
+        for (i, m) in self.members.iter().enumerate() {
+            let r = m.range();
+            let mut sink = MemberSink {
+                matrix,
+                route: g.route(i),
+            };
+            m.rod.discrete_gradient_and_tangent(
+                &ua[r.clone()],
+                &ub[r.clone()],
+                &mut f[r],
+                &mut sink,
+                scale,
+            );
+        }
+        let mid: Vec<f64> = ua.iter().zip(ub).map(|(a, b)| 0.5 * (a + b)).collect();
+        for a in &self.axial {
+            a.add_end_force(a.discrete_gradient(ua, ub), f, 1.0);
+            add_axial_block(matrix, a.nodes, &a.force_and_tangent(&mid).1, scale);
+        }
+        self.add_spring_force(ua, f, 0.5);
+        self.add_spring_force(ub, f, 0.5);
+        for &(d, k) in &self.nodal.springs {
+            matrix.add_diagonal(d, scale * k);
+        }
+        self.fold(f);
+    }
+
+    fn add_mass(&self, jac: &mut StructureMatrix, scale: f64) {
+        if let StructureMatrix::Chain(m) = jac {
+            return self.rod().add_mass(m, scale);
+        }
+        let g = self.graph.as_ref().expect("a frame");
+        let matrix = Self::graph_matrix(jac);
+        for (i, m) in self.members.iter().enumerate() {
+            m.rod.add_mass(
+                &mut MemberSink {
+                    matrix,
+                    route: g.route(i),
+                },
+                scale,
+            );
+        }
+        self.add_extra_mass(matrix, scale);
+    }
+
+    fn add_damping(&self, jac: &mut StructureMatrix, scale: f64) {
+        if let StructureMatrix::Chain(m) = jac {
+            return self.rod().add_damping(m, scale);
+        }
+        let g = self.graph.as_ref().expect("a frame");
+        let matrix = Self::graph_matrix(jac);
+        for (i, m) in self.members.iter().enumerate() {
+            m.rod.add_damping(
+                &mut MemberSink {
+                    matrix,
+                    route: g.route(i),
+                },
+                scale,
+            );
+        }
+        self.add_extra_damping(matrix, scale);
+    }
+
+    fn add_mass_times(&self, x: &[f64], out: &mut [f64], scale: f64) {
+        if self.is_single() {
+            return self.rod().add_mass_times(x, out, scale);
+        }
+        self.for_members(x, out, false, |_, rod, x, out| {
+            rod.add_mass_times(x, out, scale)
+        });
+        self.add_extra_bracket(((scale, x), (0.0, x)), 0.0, out);
+        self.fold(out);
+    }
+
+    fn add_mass_and_damping_times(
+        &self,
+        (x, ms): (&[f64], f64),
+        (y, ds): (&[f64], f64),
+        out: &mut [f64],
+    ) {
+        if self.is_single() {
+            return self.rod().add_mass_and_damping_times((x, ms), (y, ds), out);
+        }
+        for m in &self.members {
+            let r = m.range();
+            m.rod
+                .add_mass_and_damping_times((&x[r.clone()], ms), (&y[r.clone()], ds), &mut out[r]);
+        }
+        // M (ms x) + C (ds y): the bracket's `a x` with c = ds on `y` needs y as the damped one.
+        self.add_extra_bracket(((ms, x), (0.0, x)), 0.0, out);
+        self.add_extra_bracket(((0.0, y), (0.0, y)), ds, out);
+        self.fold(out);
+    }
+
+    fn add_bracket_times(
+        &self,
+        bracket: (Scaled, Scaled),
+        c: f64,
+        z: Option<&[f64]>,
+        out: &mut [f64],
+    ) {
+        if self.is_single() {
+            return self.rod().add_bracket_times(bracket, c, z, out);
+        }
+        let ((a, x), (b, y)) = bracket;
+        for m in &self.members {
+            let r = m.range();
+            let pair = ((a, &x[r.clone()]), (b, &y[r.clone()]));
+            m.rod
+                .add_bracket_times(pair, c, z.map(|z| &z[r.clone()]), &mut out[r]);
+        }
+        if let Some(z) = z {
+            let joints = 3 * self.joints.len();
+            for (o, z) in out[..joints].iter_mut().zip(&z[..joints]) {
+                *o += z;
+            }
+        }
+        self.add_extra_bracket(bracket, c, out);
+        self.fold(out);
+    }
+
+    fn has_state_damping(&self) -> bool {
+        self.dashpots().next().is_some()
+    }
+
+    fn add_state_damping(
+        &self,
+        u_n: &[f64],
+        du: &[f64],
+        dt: f64,
+        out: &mut [f64],
+        jac: Option<&mut StructureMatrix>,
+    ) {
+        self.link_damping(u_n, du, dt, out, jac);
+    }
+
+    fn state_damping_dissipation(&self, u_n: &[f64], du: &[f64], dt: f64) -> f64 {
+        self.link_dissipation(u_n, du, dt)
+    }
+
+    fn strain_energy(&self, u: &[f64]) -> f64 {
+        if self.is_single() {
+            return self.rod().strain_energy(u);
+        }
+        let members: f64 = (self.members.iter())
+            .map(|m| m.rod.strain_energy(&u[m.range()]))
+            .sum();
+        let axial: f64 = self.axial.iter().map(|a| a.strain_energy(u)).sum();
+        let springs: f64 = (self.nodal.springs.iter())
+            .map(|&(d, k)| 0.5 * k * u[d] * u[d])
+            .sum();
+        members + axial + springs
+    }
+
+    fn kinetic_energy(&self, v: &[f64]) -> f64 {
+        if self.is_single() {
+            return self.rod().kinetic_energy(v);
+        }
+        let members: f64 = (self.members.iter())
+            .map(|m| m.rod.kinetic_energy(&v[m.range()]))
+            .sum();
+        let bars: f64 = (self.axial.iter())
+            .map(|a| a.pattern_form(a.mass, self.lumped, v))
+            .sum();
+        let masses: f64 = (self.nodal.masses.iter())
+            .map(|&(d, m)| m * v[d] * v[d])
+            .sum();
+        members + 0.5 * (bars + masses)
+    }
+
+    fn dissipation_rate(&self, v: &[f64]) -> f64 {
+        if self.is_single() {
+            return self.rod().dissipation_rate(v);
+        }
+        let members: f64 = (self.members.iter())
+            .map(|m| m.rod.dissipation_rate(&v[m.range()]))
+            .sum();
+        let bars: f64 = (self.axial.iter())
+            .map(|a| a.pattern_form(a.damping, self.lumped, v))
+            .sum();
+        let dashpots: f64 = (self.nodal.dashpots.iter())
+            .map(|&(d, c)| c * v[d] * v[d])
+            .sum();
+        let rayleigh = self.rayleigh.as_ref().map_or(0.0, |(beta, tangents)| {
+            let springs: f64 = (self.nodal.springs.iter())
+                .map(|&(d, k)| k * v[d] * v[d])
+                .sum();
+            let bars: f64 = (self.axial.iter().zip(tangents))
+                .map(|(a, k)| {
+                    let [p, q] = a.nodes;
+                    let d = Vector2::new(v[3 * q] - v[3 * p], v[3 * q + 1] - v[3 * p + 1]);
+                    d.dot(&(k * d))
+                })
+                .sum();
+            beta * (springs + bars)
+        });
+        members + bars + dashpots + rayleigh
+    }
+}
+
+impl Structure {
+    /// The links with a dashpot.
+    fn dashpots(&self) -> impl Iterator<Item = &super::Axial> {
+        self.axial.iter().filter(|a| a.c > 0.0)
+    }
+
+    /// Rayleigh damping `alpha M + beta K0`, `K0` the tangent stiffness at `u0` (the initial
+    /// state): each member's own, the bars' and the joint terms'.
+    pub fn with_rayleigh(&mut self, alpha: f64, beta: f64, u0: &[f64]) {
+        for m in &mut self.members {
+            let r = m.range();
+            m.rod.with_rayleigh(alpha, beta, &u0[r]);
+        }
+        if self.is_single() {
+            return;
+        }
+        for a in &mut self.axial {
+            a.damping += alpha * a.mass;
+        }
+        let extra: Vec<(usize, f64)> = (self.nodal.masses.iter())
+            .map(|&(d, m)| (d, alpha * m))
+            .filter(|&(_, c)| c != 0.0)
+            .collect();
+        self.nodal.dashpots.extend(extra);
+        if beta != 0.0 {
+            let tangents = self
+                .axial
+                .iter()
+                .map(|a| a.force_and_tangent(u0).1)
+                .collect();
+            self.rayleigh = Some((beta, tangents));
+        }
+    }
+}
+
+/// Links' dashpots along their current line (see [`Assembly::add_state_damping`]).
+impl Structure {
+    pub(super) fn link_damping(
+        &self,
+        u_n: &[f64],
+        du: &[f64],
+        dt: f64,
+        out: &mut [f64],
+        mut jac: Option<&mut StructureMatrix>,
+    ) {
+        for a in self.dashpots() {
+            let (stretch, e) = a.stretch_increment(u_n, du);
+            a.add_end_force(a.c * stretch / dt * e, out, 1.0);
+            if let Some(m) = jac.as_deref_mut() {
+                let k = (a.c / dt) * (e * e.transpose());
+                add_axial_block(Self::graph_matrix(m), a.nodes, &k, 1.0);
+            }
+        }
+    }
+
+    pub(super) fn link_dissipation(&self, u_n: &[f64], du: &[f64], dt: f64) -> f64 {
+        (self.dashpots())
+            .map(|a| {
+                let (stretch, _) = a.stretch_increment(u_n, du);
+                a.c * stretch * stretch / dt
+            })
+            .sum()
+    }
+}
