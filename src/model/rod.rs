@@ -37,13 +37,15 @@ pub struct PointOnRod {
     pub weights: (f64, f64),
 }
 
-/// Where a rod's reference curve lies in the plane: its curve (which starts at the origin)
-/// turned by `angle` about the origin, then moved to `origin`. A member of a frame is placed so
-/// that its curve runs from its `from` joint to its `to` joint.
+/// Where a rod's reference curve lies in the plane: its curve (which starts at the origin
+/// along `e1`), mirrored across `e1` if `mirrored`, turned by `angle` about the origin, then
+/// moved to `origin`. A member of a frame is placed so that its curve runs from its `from`
+/// joint to its `to` joint (an arc bulging to the right of that chord is mirrored).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Placement {
     pub origin: Vector2<f64>,
     pub angle: f64,
+    pub mirrored: bool,
     /// `(cos angle, sin angle)`.
     pub direction: Vector2<f64>,
 }
@@ -53,14 +55,31 @@ impl Placement {
         Placement {
             origin,
             angle,
+            mirrored: false,
             direction: Vector2::new(libm::cos(angle), libm::sin(angle)),
         }
     }
 
-    /// `origin + R(angle) x`.
+    /// The same placement, mirrored.
+    pub fn mirrored(mut self) -> Placement {
+        self.mirrored = true;
+        self
+    }
+
+    /// `origin + R(angle) x` (with `x` mirrored first when the placement is).
     pub fn place(&self, x: Vector2<f64>) -> Vector2<f64> {
         let (c, s) = (self.direction[0], self.direction[1]);
-        self.origin + Vector2::new(c * x[0] - s * x[1], s * x[0] + c * x[1])
+        let y = if self.mirrored { -x[1] } else { x[1] };
+        self.origin + Vector2::new(c * x[0] - s * y, s * x[0] + c * y)
+    }
+
+    /// A tangent angle of the curve, placed.
+    pub fn turn(&self, alpha: f64) -> f64 {
+        if self.mirrored {
+            self.angle - alpha
+        } else {
+            self.angle + alpha
+        }
     }
 }
 
@@ -169,7 +188,7 @@ impl Rod {
             let (a, l) = (self.node_s[e], el.length);
             let alpha = GAUSS_POINTS.map(|xi| {
                 let (_, nb) = shape_functions(xi);
-                placement.angle + self.curve.tangent_angle(a + nb * l)
+                placement.turn(self.curve.tangent_angle(a + nb * l))
             });
             *el = Element::new(l, alpha);
         }
@@ -186,7 +205,7 @@ impl Rod {
     /// The reference tangent angle `alpha(s)` in the plane.
     pub fn reference_angle(&self, s: f64) -> f64 {
         let alpha = self.curve.tangent_angle(s);
-        self.placement.map_or(alpha, |p| p.angle + alpha)
+        self.placement.map_or(alpha, |p| p.turn(alpha))
     }
 
     /// The bands of the mass and damping matrices from the element coefficients.

@@ -27,6 +27,7 @@ fn scene_summary(scene: &Scene) -> String {
     let shape = match scene.geometry {
         crate::scene::Geometry::Straight => "a straight rod from (0, 0) to (L, 0)",
         crate::scene::Geometry::Arc => "a circular arc of span L and rise H from (0, 0) to (L, 0)",
+        crate::scene::Geometry::Frame => "a frame of members between joints",
     };
     let _ = writeln!(
         h,
@@ -53,18 +54,18 @@ fn scene_summary(scene: &Scene) -> String {
             "<li>Support <code>{}</code> at {}: holds {}{motion}; reactions <code>{0}_Rx</code>, \
              <code>{0}_Ry</code>, <code>{0}_M</code>.</li>",
             html(&s.name),
-            s.at,
+            scene.station_text(&s.at),
             held.join(", ")
         );
     }
     for l in &scene.loads {
         let place = match l.kind {
-            LoadKind::Point { at } => format!("point load at {at}"),
+            LoadKind::Point { at } => format!("point load at {}", scene.station_text(&at)),
             LoadKind::Distributed => "distributed load (per unit length)".to_string(),
             LoadKind::Patch { from, to, .. } => {
                 format!("distributed load (per unit length) over [{from}, {to}]")
             }
-            LoadKind::Moment { at } => format!("point moment at {at}"),
+            LoadKind::Moment { at } => format!("point moment at {}", scene.station_text(&at)),
             LoadKind::Gravity => "gravity (acceleration of the rod's mass)".to_string(),
             LoadKind::Moving { speed, enter } => format!(
                 "point load moving at {} m/s from t = {} s",
@@ -268,7 +269,7 @@ fn attachment_lines(scene: &Scene) -> Vec<String> {
         lines.push(format!(
             "Point mass <code>{}</code> at {}: m = {} kg, J = {} kg m2.",
             html(&m.name),
-            m.at,
+            scene.station_text(&m.at),
             m.m,
             m.j
         ));
@@ -284,7 +285,7 @@ fn attachment_lines(scene: &Scene) -> Vec<String> {
         lines.push(format!(
             "Spring <code>{}</code> at {} on {}: k = {}, c = {} ({base}).",
             html(&s.name),
-            s.at,
+            scene.station_text(&s.at),
             DOF_NAMES[s.dof],
             s.k,
             s.c

@@ -3,12 +3,13 @@
 //! Their stations are nodes of every mesh.
 use super::checker::{entry, Checker};
 use super::file::{FoundationFile, MassFile, SpringFile};
+use super::frame::{place, Frame, MemberKind, PlaceKeys};
 use super::{Input, InputKind, SceneError, Slot, Support, DOF_NAMES};
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct PointMass {
     pub name: String,
-    pub at: f64,
+    pub at: super::Station,
     /// Mass (on u1 and u2) and rotary inertia (on w).
     pub m: f64,
     pub j: f64,
@@ -17,7 +18,7 @@ pub struct PointMass {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Spring {
     pub name: String,
-    pub at: f64,
+    pub at: super::Station,
     /// 0 `u1`, 1 `u2`, 2 `w`.
     pub dof: usize,
     pub k: f64,
@@ -29,6 +30,8 @@ pub struct Spring {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Foundation {
     pub name: String,
+    /// The member it is under (0 in a scene without joints).
+    pub member: usize,
     /// Stiffness and damping per unit length, on u2.
     pub k: f64,
     pub c: f64,
@@ -56,13 +59,22 @@ fn non_negative(
     Ok(x)
 }
 
-pub(super) fn masses(c: &Checker, raw: &[MassFile]) -> Result<Vec<PointMass>, SceneError> {
+pub(super) fn masses(
+    c: &Checker,
+    raw: &[MassFile],
+    frame: Option<&Frame>,
+) -> Result<Vec<PointMass>, SceneError> {
     (raw.iter().enumerate())
         .map(|(i, m)| {
             let key = |k: &str| entry("mass", i, m.name.as_ref(), k);
+            let keys = PlaceKeys {
+                at: m.at,
+                joint: m.joint.as_ref(),
+                member: m.member.as_ref(),
+            };
             Ok(PointMass {
                 name: c.identifier(m.name.as_ref(), &key("name"))?,
-                at: c.station(m.at, &key("at"))?,
+                at: place(c, frame, keys, false, &key)?,
                 m: non_negative(c, m.m, None, &key("m"), "the mass (kg)")?,
                 j: non_negative(c, m.rotary, Some(0.0), &key("J"), "")?,
             })
@@ -74,23 +86,29 @@ pub(super) fn springs(
     c: &Checker,
     raw: &[SpringFile],
     supports: &[Support],
+    frame: Option<&Frame>,
     inputs: &mut Vec<Input>,
 ) -> Result<Vec<Spring>, SceneError> {
     (raw.iter().enumerate())
         .map(|(i, s)| {
             let key = |k: &str| entry("spring", i, s.name.as_ref(), k);
             let name = c.identifier(s.name.as_ref(), &key("name"))?;
-            let at = c.station(s.at, &key("at"))?;
+            let keys = PlaceKeys {
+                at: s.at,
+                joint: s.joint.as_ref(),
+                member: s.member.as_ref(),
+            };
+            let at = place(c, frame, keys, false, &key)?;
             let dof_name = c.required(s.dof.as_deref(), &key("dof"), "\"u1\", \"u2\" or \"w\"")?;
             let dof = c.one_of(dof_name, &DOF_NAMES, &key("dof"))?;
             if let Some(held) = supports
                 .iter()
-                .find(|p| (p.at - at).abs() < 1e-12 && p.fixed[dof])
+                .find(|p| p.at.same(&at) && p.fixed[dof] && p.angle == 0.0)
             {
                 return c.err(
                     key("dof"),
                     format!(
-                        "support `{}` already holds {dof_name} at {at}: a spring there would \
+                        "support `{}` already holds {dof_name} there: a spring there would \
                          carry nothing",
                         held.name
                     ),
@@ -135,11 +153,36 @@ fn base_input(name: &str, index: usize, dof: usize) -> Input {
 pub(super) fn foundations(
     c: &Checker,
     raw: &[FoundationFile],
+    frame: Option<&Frame>,
 ) -> Result<Vec<Foundation>, SceneError> {
     (raw.iter().enumerate())
         .map(|(i, f)| {
             let key = |k: &str| entry("foundation", i, f.name.as_ref(), k);
             let name = c.identifier(f.name.as_ref(), &key("name"))?;
+            let member = match (frame, &f.member) {
+                (None, None) => 0,
+                (None, Some(_)) => {
+                    return c.err(key("member"), "a scene without [[member]]s has one rod")
+                }
+                (Some(_), None) => {
+                    return c.err(key("member"), "missing: the member on the foundation")
+                }
+                (Some(frame), Some(m)) => match frame.member(m) {
+                    Some(k) if frame.members[k].kind == MemberKind::Rod => k,
+                    Some(_) => {
+                        return c.err(
+                            key("member"),
+                            format!("`{m}` is a truss bar: no foundation"),
+                        )
+                    }
+                    None => {
+                        return c.err(
+                            key("member"),
+                            format!("`{m}` is not a [[member]] of this scene"),
+                        )
+                    }
+                },
+            };
             let from = f
                 .from
                 .map_or(Ok(0.0), |x| c.station(Some(x), &key("from")))?;
@@ -152,6 +195,7 @@ pub(super) fn foundations(
             }
             Ok(Foundation {
                 name,
+                member,
                 k: non_negative(c, f.k, None, &key("k"), "the stiffness per length (N/m2)")?,
                 c: non_negative(c, f.c, Some(0.0), &key("c"), "")?,
                 from,

@@ -24,7 +24,18 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     let raw: SceneFile = super::syntax::read(text, file)?;
     let name = c.identifier(raw.name.as_ref(), "name")?;
     let experiment = experiment(&c, &raw)?;
-    let (geometry, span, rise) = geometry(&c, &raw)?;
+    let mut frame = super::frame::frame(&c, &raw.joint, &raw.member)?;
+    let (geometry, span, rise) =
+        match &frame {
+            None => geometry(&c, &raw)?,
+            Some(_) if raw.geometry.is_some() => return c.err(
+                "[geometry]",
+                "a file is one rod ([geometry]) or a frame ([[joint]]s and [[member]]s), not both",
+            ),
+            Some(f) => (Geometry::Frame, f.extent(), None),
+        };
+    super::frame::links(&c, &raw.link, frame.as_mut())?;
+    let frame_ref = frame.as_ref();
 
     let harmonic = raw
         .load
@@ -39,6 +50,14 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     };
     let mut params = params::standard_params(&needs);
     params[super::Std::Span as usize].start = span;
+    if geometry == Geometry::Frame {
+        // A frame's joints fix its geometry: L reports its size.
+        let l = &mut params[super::Std::Span as usize];
+        l.description = "Size of the frame: the largest distance between two of its joints \
+                         (its joints fix the geometry: informative)"
+            .to_string();
+        l.range = Range::between(span, span);
+    }
     if let Some(h) = rise {
         let i = params.iter().position(|p| p.name == "H").expect("arc");
         params[i].start = h;
@@ -67,16 +86,16 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     }
 
     let mut inputs = Vec::new();
-    let supports = items::supports(&c, &raw.support, &params, &mut inputs)?;
-    let loads = items::loads(&c, &raw.load, &mut params, &mut inputs)?;
+    let supports = items::supports(&c, &raw.support, &params, frame_ref, &mut inputs)?;
+    let loads = items::loads(&c, &raw.load, &mut params, frame_ref, &mut inputs)?;
     // Spring bases' inputs after the loads': earlier scenes keep their value references.
-    let springs = attached::springs(&c, &raw.spring, &supports, &mut inputs)?;
+    let springs = attached::springs(&c, &raw.spring, &supports, frame_ref, &mut inputs)?;
     items::label_amplitude(&loads, &mut params);
     let sensors = raw
         .sensor
         .iter()
         .enumerate()
-        .map(|(i, s)| items::sensor(&c, i, s))
+        .map(|(i, s)| items::sensor(&c, i, s, frame_ref))
         .collect::<Result<Vec<_>, _>>()?;
     let (shape_points, shape_fields) = super::readouts::shape(&c, raw.shape.as_ref())?;
     let initial = initial(&c, &raw, &sensors, &params)?;
@@ -115,9 +134,10 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         model,
         section,
         rayleigh: damping::rayleigh(&c, raw.damping.as_ref())?,
-        masses: attached::masses(&c, &raw.mass)?,
+        masses: attached::masses(&c, &raw.mass, frame_ref)?,
         springs,
-        foundations: attached::foundations(&c, &raw.foundation)?,
+        foundations: attached::foundations(&c, &raw.foundation, frame_ref)?,
+        frame,
         source: text.to_string(),
     };
     if let Err(e) = scene.section.check(&scene.defaults()) {
@@ -138,7 +158,11 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     if let Err((key, message)) = claims::check_names(&scene) {
         return c.err(key, message);
     }
-    if scene.initial.state == InitialState::Static {
+    if let Some(frame) = &scene.frame {
+        if let Err((key, message)) = super::frame_check::check(&scene, frame) {
+            return c.err(key, message);
+        }
+    } else if scene.initial.state == InitialState::Static {
         if let Some(free) = mechanics::free_rigid_motion(&scene, span, rise) {
             return c.err(
                 "[[support]]",
@@ -207,6 +231,7 @@ fn geometry(c: &Checker, raw: &SceneFile) -> Result<(Geometry, f64, Option<f64>)
         }
         (Geometry::Arc, None) => return c.err("geometry.H", "missing: the rise of the arc"),
         (Geometry::Arc, Some(h)) if h.is_finite() && h > 0.0 && h <= 0.5 * span => Some(h),
+        (Geometry::Frame, _) => unreachable!("[geometry] names a straight rod or an arc"),
         (Geometry::Arc, Some(h)) => {
             return c.err(
                 "geometry.H",

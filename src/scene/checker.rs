@@ -22,6 +22,15 @@ impl Checker<'_> {
         })
     }
 
+    /// The error itself (for `ok_or_else`).
+    pub(super) fn error(&self, key: impl Into<String>, message: impl Into<String>) -> SceneError {
+        SceneError {
+            file: self.file.to_string(),
+            key: key.into(),
+            message: message.into(),
+        }
+    }
+
     pub(super) fn required<T>(
         &self,
         value: Option<T>,

@@ -34,6 +34,49 @@ pub struct SceneFile {
     pub spring: Vec<SpringFile>,
     #[serde(default)]
     pub foundation: Vec<FoundationFile>,
+    #[serde(default)]
+    pub joint: Vec<JointFile>,
+    #[serde(default)]
+    pub member: Vec<MemberFile>,
+    #[serde(default)]
+    pub link: Vec<LinkFile>,
+}
+
+/// A joint of a frame: where member ends meet.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct JointFile {
+    pub name: Option<String>,
+    pub x: Option<f64>,
+    pub y: Option<f64>,
+}
+
+/// A member of a frame: a rod (or a truss bar) between two joints.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct MemberFile {
+    pub name: Option<String>,
+    pub from: Option<String>,
+    pub to: Option<String>,
+    pub shape: Option<String>,
+    #[serde(rename = "H")]
+    pub rise: Option<f64>,
+    pub elements: Option<i64>,
+    pub section: Option<SectionFile>,
+    pub hinges: Option<Vec<String>>,
+    pub kind: Option<String>,
+}
+
+/// A spring and dashpot between two points of a frame.
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct LinkFile {
+    pub name: Option<String>,
+    pub from: Option<toml::Value>,
+    pub to: Option<toml::Value>,
+    pub k: Option<f64>,
+    pub c: Option<f64>,
+    pub length: Option<f64>,
 }
 
 /// Natural frequencies of the initial state.
@@ -48,6 +91,8 @@ pub struct ModesFile {
 pub struct MassFile {
     pub name: Option<String>,
     pub at: Option<f64>,
+    pub joint: Option<String>,
+    pub member: Option<String>,
     pub m: Option<f64>,
     #[serde(rename = "J")]
     pub rotary: Option<f64>,
@@ -58,6 +103,8 @@ pub struct MassFile {
 pub struct SpringFile {
     pub name: Option<String>,
     pub at: Option<f64>,
+    pub joint: Option<String>,
+    pub member: Option<String>,
     pub dof: Option<String>,
     pub k: Option<f64>,
     pub c: Option<f64>,
@@ -68,6 +115,7 @@ pub struct SpringFile {
 #[serde(deny_unknown_fields)]
 pub struct FoundationFile {
     pub name: Option<String>,
+    pub member: Option<String>,
     pub k: Option<f64>,
     pub c: Option<f64>,
     pub from: Option<f64>,
@@ -165,6 +213,10 @@ pub struct ParameterFile {
 pub struct SupportFile {
     pub name: Option<String>,
     pub at: Option<f64>,
+    pub joint: Option<String>,
+    pub member: Option<String>,
+    /// Degrees, counter-clockwise from e1: the frame of `fix` and `displace`.
+    pub angle: Option<f64>,
     pub fix: Option<Vec<String>>,
     #[serde(default)]
     pub displace: BTreeMap<String, toml::Value>,
@@ -177,6 +229,10 @@ pub struct LoadFile {
     pub name: Option<String>,
     pub kind: Option<String>,
     pub at: Option<f64>,
+    pub joint: Option<String>,
+    pub member: Option<String>,
+    /// A moving load's route: members end to end.
+    pub path: Option<Vec<String>>,
     pub from: Option<f64>,
     pub to: Option<f64>,
     pub value_end: Option<toml::Value>,
@@ -197,6 +253,8 @@ pub struct LoadFile {
 pub struct SensorFile {
     pub name: Option<String>,
     pub at: Option<f64>,
+    pub joint: Option<String>,
+    pub member: Option<String>,
     pub quantity: Option<String>,
     #[serde(default)]
     pub description: String,

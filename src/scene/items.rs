@@ -2,11 +2,12 @@
 //! inputs) and `[[sensor]]`.
 use super::checker::{entry, Checker};
 use super::file::{LoadFile, SensorFile, SupportFile};
+use super::frame::{place, Frame, PlaceKeys};
 use super::load_kinds;
 use super::params::{Param, Variability};
 use super::{
-    Direction, Input, InputKind, Load, LoadKind, Quantity, SceneError, Sensor, Slot, Support,
-    TimeLaw, DOF_NAMES,
+    Direction, Input, InputKind, Load, LoadKind, Quantity, SceneError, Sensor, Slot, Station,
+    Support, TimeLaw, DOF_NAMES,
 };
 use std::collections::BTreeSet;
 
@@ -14,22 +15,38 @@ pub(super) fn supports(
     c: &Checker,
     raw: &[SupportFile],
     params: &[Param],
+    frame: Option<&Frame>,
     inputs: &mut Vec<Input>,
 ) -> Result<Vec<Support>, SceneError> {
     let mut out: Vec<Support> = Vec::new();
     for (i, s) in raw.iter().enumerate() {
         let key = |k: &str| entry("support", i, s.name.as_ref(), k);
         let name = c.identifier(s.name.as_ref(), &key("name"))?;
-        let at = c.station(s.at, &key("at"))?;
-        if let Some(other) = out.iter().find(|o| (o.at - at).abs() < 1e-12) {
+        let keys = PlaceKeys {
+            at: s.at,
+            joint: s.joint.as_ref(),
+            member: s.member.as_ref(),
+        };
+        let at = place(c, frame, keys, false, &key)?;
+        if let Some(other) = out.iter().find(|o| o.at.same(&at)) {
             return c.err(
-                key("at"),
+                key(if s.joint.is_some() { "joint" } else { "at" }),
                 format!(
-                    "support `{}` is already at {at}: hold both sets of dofs in one support",
+                    "support `{}` is already there: hold both sets of dofs in one support",
                     other.name
                 ),
             );
         }
+        let angle = match s.angle {
+            None => 0.0,
+            Some(a) if a.is_finite() && a > -360.0 && a < 360.0 => a,
+            Some(a) => {
+                return c.err(
+                    key("angle"),
+                    format!("{a} is out of range: degrees in (-360, 360)"),
+                )
+            }
+        };
         let fix = c.required(
             s.fix.as_ref(),
             &key("fix"),
@@ -77,6 +94,13 @@ pub(super) fn supports(
             None | Some("none") => false,
             Some(m) => c.one_of(m, &["none", "input"], &key("motion"))? == 1,
         };
+        if motion && angle != 0.0 {
+            return c.err(
+                key("motion"),
+                "a support at an angle does not follow inputs (give its motion in the global \
+                 frame: angle = 0, or move it through a spring base)",
+            );
+        }
         let index = out.len();
         if motion {
             for dof in (0..3).filter(|&k| fixed[k]) {
@@ -99,6 +123,7 @@ pub(super) fn supports(
         out.push(Support {
             name,
             at,
+            angle,
             fixed,
             displace,
             motion,
@@ -111,6 +136,7 @@ pub(super) fn loads(
     c: &Checker,
     raw: &[LoadFile],
     params: &mut [Param],
+    frame: Option<&Frame>,
     inputs: &mut Vec<Input>,
 ) -> Result<Vec<Load>, SceneError> {
     let mut out = Vec::new();
@@ -118,8 +144,9 @@ pub(super) fn loads(
     for (i, l) in raw.iter().enumerate() {
         let key = |k: &str| entry("load", i, l.name.as_ref(), k);
         let name = c.identifier(l.name.as_ref(), &key("name"))?;
-        let placed = load_kinds::place(c, l, params, &key)?;
-        let (kind, direction, unit) = (placed.kind, placed.direction, placed.unit);
+        let placed = load_kinds::place(c, l, params, frame, &key)?;
+        let (kind, direction, unit, path) =
+            (placed.kind, placed.direction, placed.unit, placed.path);
         let time_name = l.time.as_deref().unwrap_or("constant");
         let time_kind = c.one_of(time_name, &["constant", "harmonic", "input"], &key("time"))?;
         if kind == LoadKind::Gravity && time_kind != 0 {
@@ -211,6 +238,7 @@ pub(super) fn loads(
             direction,
             value,
             time,
+            path,
         });
     }
     if f_units.len() == 1 {
@@ -226,35 +254,69 @@ pub const STANDARD_GRAVITY: f64 = 9.81;
 
 /// A load's kind, place and direction in words.
 pub fn describe(kind: LoadKind, direction: Direction) -> String {
-    let along = format!(
-        "along {}e{}",
-        if direction.sign < 0.0 { "-" } else { "" },
-        direction.component + 1
-    );
+    let sign = if direction.sign < 0.0 { "-" } else { "" };
+    let along = if direction.component == super::NORMAL {
+        format!("along the member's {sign}normal")
+    } else {
+        format!("along {sign}e{}", direction.component + 1)
+    };
     match kind {
-        LoadKind::Point { at } => format!("Point load {along} at {at} of the length"),
+        LoadKind::Point { at } => format!("Point load {along} at {}", where_(at)),
         LoadKind::Distributed => format!("Distributed load {along}"),
         LoadKind::Patch { from, to, .. } => {
             format!("Distributed load {along} over [{from}, {to}] of the length")
         }
         LoadKind::Moment { at } => {
-            format!("Point moment about e3 (counter-clockwise) at {at} of the length")
+            format!(
+                "Point moment about e3 (counter-clockwise) at {}",
+                where_(at)
+            )
         }
         LoadKind::Gravity => format!("Gravity {along}"),
         LoadKind::Moving { .. } => format!("Moving load {along}"),
     }
 }
 
-pub(super) fn sensor(c: &Checker, i: usize, s: &SensorFile) -> Result<Sensor, SceneError> {
+/// A station in words (in variable descriptions).
+pub fn where_(at: Station) -> String {
+    match at {
+        Station::On { at, .. } => format!("{at} of the length"),
+        Station::Joint(_) => "a joint".to_string(),
+    }
+}
+
+pub(super) fn sensor(
+    c: &Checker,
+    i: usize,
+    s: &SensorFile,
+    frame: Option<&Frame>,
+) -> Result<Sensor, SceneError> {
     let key = |k: &str| entry("sensor", i, s.name.as_ref(), k);
     let name = c.identifier(s.name.as_ref(), &key("name"))?;
-    let at = c.station(s.at, &key("at"))?;
     let q = c.required(
         s.quantity.as_deref(),
         &key("quantity"),
         &format!("one of {}", Quantity::NAMES.join(", ")),
     )?;
     let quantity = Quantity::ALL[c.one_of(q, &Quantity::NAMES, &key("quantity"))?];
+    let keys = PlaceKeys {
+        at: s.at,
+        joint: s.joint.as_ref(),
+        member: s.member.as_ref(),
+    };
+    // A section quantity is read in a member's section: at a joint, name the member.
+    let section = matches!(quantity.reading(), super::Reading::Section(_));
+    let at = place(c, frame, keys, section || s.member.is_some(), &key)?;
+    if let (Station::Joint(j), true) = (at, section) {
+        let joint = &frame.expect("a joint is a frame's").joints[j].name;
+        return c.err(
+            key("member"),
+            format!(
+                "{q} is read in a member's section and joint `{joint}` joins several: name the \
+                 member too (joint = \"{joint}\", member = \"...\")"
+            ),
+        );
+    }
     Ok(Sensor {
         name,
         at,

@@ -19,10 +19,10 @@ pub(super) fn free_rigid_motion(
     // Supports, springs and foundations (on u2 at both ends) restrain.
     let mut held: Vec<(f64, usize)> = Vec::new();
     for s in &scene.supports {
-        held.extend((0..3).filter(|&k| s.fixed[k]).map(|k| (s.at, k)));
+        held.extend((0..3).filter(|&k| s.fixed[k]).map(|k| (s.at.fraction(), k)));
     }
     let springs = scene.springs.iter().filter(|s| s.k > 0.0);
-    held.extend(springs.map(|s| (s.at, s.dof)));
+    held.extend(springs.map(|s| (s.at.fraction(), s.dof)));
     let foundations = scene.foundations.iter().filter(|f| f.k > 0.0);
     held.extend(foundations.flat_map(|f| [(f.from, 1), (f.to, 1)]));
     for (at, k) in held {

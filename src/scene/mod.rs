@@ -11,6 +11,9 @@ mod checker;
 mod claims;
 pub mod damping;
 mod file;
+pub mod frame;
+mod frame_check;
+mod frame_mesh;
 mod items;
 mod load_kinds;
 mod mechanics;
@@ -64,6 +67,8 @@ pub enum Geometry {
     Straight,
     /// Circular arc from `(0, 0)` to `(L, 0)` through the crown `(L/2, H)`.
     Arc,
+    /// Members between joints (`[[joint]]`, `[[member]]`): [`Scene::frame`].
+    Frame,
 }
 
 /// A number or a (possibly negated) parameter, as written in a value slot.
@@ -82,11 +87,41 @@ impl Slot {
     }
 }
 
+/// Where an item sits: on a member at a fraction of its arc length (a scene without joints:
+/// member 0, the rod), or at a joint of a frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Station {
+    On { member: usize, at: f64 },
+    Joint(usize),
+}
+
+impl Station {
+    /// The fraction of the arc length on member 0 (a scene without joints).
+    pub fn fraction(&self) -> f64 {
+        match *self {
+            Station::On { at, .. } => at,
+            Station::Joint(_) => f64::NAN,
+        }
+    }
+
+    /// Whether two stations are one place (within 1e-12 of a member's length).
+    pub fn same(&self, other: &Station) -> bool {
+        match (self, other) {
+            (Station::On { member: a, at: x }, Station::On { member: b, at: y }) => {
+                a == b && (x - y).abs() < 1e-12
+            }
+            (Station::Joint(a), Station::Joint(b)) => a == b,
+            _ => false,
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct Support {
     pub name: String,
-    /// Station: fraction of the arc length.
-    pub at: f64,
+    pub at: Station,
+    /// The frame of `fixed` and `displace`: degrees counter-clockwise from e1 (0: e1, e2).
+    pub angle: f64,
     /// Which of `u1, u2, w` are held.
     pub fixed: [bool; 3],
     /// The prescribed value of each held dof (0 unless `displace` says otherwise).
@@ -98,20 +133,21 @@ pub struct Support {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LoadKind {
     Point {
-        at: f64,
+        at: Station,
     },
-    /// Per unit length over the whole rod, uniform.
+    /// Per unit length over the whole rod, uniform (a scene without joints).
     Distributed,
-    /// Per unit length over the stations `[from, to]`, varying linearly from the load's value
-    /// to `value_end` (`None`: uniform).
+    /// Per unit length over the stations `[from, to]` of `member`, varying linearly from the
+    /// load's value to `value_end` (`None`: uniform).
     Patch {
+        member: usize,
         from: f64,
         to: f64,
         value_end: Option<Slot>,
     },
     /// A point couple about e3 (counter-clockwise positive); its direction is the rotation dof.
     Moment {
-        at: f64,
+        at: Station,
     },
     /// An acceleration (the load's value) on the rod's mass: `value rho A` per unit length.
     Gravity,
@@ -123,13 +159,17 @@ pub enum LoadKind {
     },
 }
 
-/// A fixed direction: `component` 0 (`e1`) or 1 (`e2`), or 2 (the rotation, for moments),
-/// `sign` +1 or -1.
+/// A fixed direction: `component` 0 (`e1`) or 1 (`e2`), or 2 (the rotation, for moments), or
+/// [`NORMAL`] (a member's normal in its reference state: its chord turned by 90 degrees
+/// counter-clockwise), `sign` +1 or -1.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Direction {
     pub component: usize,
     pub sign: f64,
 }
+
+/// The direction component of a member's normal.
+pub const NORMAL: usize = 3;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TimeLaw {
@@ -148,12 +188,14 @@ pub struct Load {
     /// Magnitude (for inputs: 1, the input is the magnitude).
     pub value: Slot,
     pub time: TimeLaw,
+    /// A moving load's route: members travelled end to end (a scene without joints: `[0]`).
+    pub path: Vec<usize>,
 }
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Sensor {
     pub name: String,
-    pub at: f64,
+    pub at: Station,
     pub quantity: Quantity,
     pub description: String,
 }
@@ -250,6 +292,8 @@ pub struct Scene {
     pub masses: Vec<attached::PointMass>,
     pub springs: Vec<attached::Spring>,
     pub foundations: Vec<attached::Foundation>,
+    /// The joints, members and links of a frame (`None`: one rod, `[geometry]`).
+    pub frame: Option<frame::Frame>,
     /// The file's text, exactly as read (what an FMU carries in `resources/`).
     pub source: String,
 }
@@ -357,17 +401,10 @@ impl Scene {
         self.check_mesh(values.elements())
     }
 
-    /// The stations that are nodes of every mesh (supports, masses, springs, the ends of the
-    /// foundations, and both ends of the rod), sorted: the
-    /// boundaries of the segments the elements are spread over.
+    /// The stations of the rod (member 0 of a scene without joints) that are nodes of every
+    /// mesh: see [`Scene::member_stations`].
     pub fn mesh_stations(&self) -> Vec<f64> {
-        let supports = self.supports.iter().map(|s| s.at);
-        let masses = self.masses.iter().map(|m| m.at);
-        let springs = self.springs.iter().map(|s| s.at);
-        let foundations = self.foundations.iter().flat_map(|f| [f.from, f.to]);
-        crate::model::mesh::segment_boundaries(
-            supports.chain(masses).chain(springs).chain(foundations),
-        )
+        self.member_stations(0)
     }
 
     /// Whether `elements` can put every station on a node (one element per segment at least);
@@ -377,13 +414,13 @@ impl Scene {
         if (lo..=hi).contains(&elements) {
             return Ok(());
         }
-        let stations = self.mesh_stations();
+        let segments = self.shared_segments();
         Err(params::refuse(
             params::ELEMENTS,
             format!(
-                "{elements} is out of range: must be in [{lo}, {hi}] (the {} segments between \
-                 the ends and the supports need one element each at least)",
-                stations.len() - 1
+                "{elements} is out of range: must be in [{lo}, {hi}] (the {segments} segments \
+                 between the ends and the stations of the supports, masses and springs need one \
+                 element each at least)"
             ),
         ))
     }
@@ -391,8 +428,7 @@ impl Scene {
     /// The fewest and the most elements: one per segment between the stations (at least
     /// [`MIN_ELEMENTS`]) up to [`MAX_ELEMENTS`]; every count between works.
     pub fn element_range(&self) -> (usize, usize) {
-        let fewest = crate::model::mesh::fewest_elements(&self.mesh_stations());
-        (fewest.max(MIN_ELEMENTS), MAX_ELEMENTS)
+        (self.shared_segments().max(MIN_ELEMENTS), MAX_ELEMENTS)
     }
 }
 

@@ -60,9 +60,48 @@ impl CrossSection {
     /// Area, second moment of area and shear area (before the shear factor of `[model]` or
     /// `[section]`, which the caller applies to the shapes with dimensions).
     pub fn properties(&self, values: &ParamValues) -> Properties {
+        shape_properties(self.shape, &|k| self.dim(values, k))
+    }
+
+    /// The distance between the extreme fibers, where a shape has one (a general section only
+    /// with `depth`).
+    pub fn depth(&self, values: &ParamValues) -> Option<f64> {
+        shape_depth(self.shape, self.dims.len(), &|k| self.dim(values, k))
+    }
+}
+
+/// A frame member's own section: its shape and dimensions as numbers (not FMU parameters), and
+/// its shear factor.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MemberSection {
+    pub shape: SectionShape,
+    pub dims: Vec<f64>,
+    /// `As = shear_factor A` (1 when not given; a general section gives `As`).
+    pub shear_factor: f64,
+}
+
+impl MemberSection {
+    pub fn properties(&self) -> Properties {
+        shape_properties(self.shape, &|k| self.dims[k])
+    }
+
+    pub fn depth(&self) -> Option<f64> {
+        shape_depth(self.shape, self.dims.len(), &|k| self.dims[k])
+    }
+}
+
+fn shape_depth(shape: SectionShape, count: usize, d: &dyn Fn(usize) -> f64) -> Option<f64> {
+    match shape {
+        SectionShape::Rectangle => Some(d(1)),
+        SectionShape::Circle | SectionShape::Tube => Some(d(0)),
+        SectionShape::General => (count == 4).then(|| d(3)),
+    }
+}
+
+fn shape_properties(shape: SectionShape, d: &dyn Fn(usize) -> f64) -> Properties {
+    {
         use std::f64::consts::PI;
-        let d = |k| self.dim(values, k);
-        let (area, inertia) = match self.shape {
+        let (area, inertia) = match shape {
             SectionShape::Rectangle => (d(0) * d(1), d(0) * d(1).powi(3) / 12.0),
             SectionShape::Circle => (PI * d(0).powi(2) / 4.0, PI * d(0).powi(4) / 64.0),
             SectionShape::Tube => {
@@ -86,17 +125,9 @@ impl CrossSection {
             shear_area: area,
         }
     }
+}
 
-    /// The distance between the extreme fibers, where a shape has one (a general section only
-    /// with `depth`).
-    pub fn depth(&self, values: &ParamValues) -> Option<f64> {
-        match self.shape {
-            SectionShape::Rectangle => Some(self.dim(values, 1)),
-            SectionShape::Circle | SectionShape::Tube => Some(self.dim(values, 0)),
-            SectionShape::General => (self.dims.len() == 4).then(|| self.dim(values, 3)),
-        }
-    }
-
+impl CrossSection {
     /// The conditions between dimensions: a tube's wall thinner than its radius.
     pub fn check(&self, values: &ParamValues) -> Result<(), ParamError> {
         if self.shape == SectionShape::Tube {
@@ -167,6 +198,38 @@ pub fn is_dimension_name(name: &str) -> bool {
 /// The checked `[section]`: its shape, the dimensions' parameters (to be placed at `first` in
 /// the parameter table), and the shear factor it gives, if any. A rectangle's `b`, `h` may come
 /// from `[defaults]` instead (`from_defaults`), and default to 1.
+/// A member's `section = { ... }`: the keys of `[section]`, dimensions as numbers.
+pub(super) fn member_section(
+    c: &Checker,
+    raw: &SectionFile,
+    key: &str,
+) -> Result<MemberSection, SceneError> {
+    let none = |_: &str| Ok(None);
+    let nested = Checker { file: c.file };
+    let (section, params, factor) = section(&nested, Some(raw), &none, 0).map_err(|mut e| {
+        e.key = e.key.replacen("section", key, 1);
+        e
+    })?;
+    if section.shape == SectionShape::Rectangle && (raw.b.is_none() || raw.h.is_none()) {
+        return c.err(key, "a member's rectangle gives both b and h");
+    }
+    let dims: Vec<f64> = params.iter().map(|p| p.start).collect();
+    if section.shape == SectionShape::Tube && dims[1] >= 0.5 * dims[0] {
+        return c.err(
+            format!("{key}.t"),
+            format!(
+                "{} is out of range: a tube's wall must be thinner than its radius, t in (0, D/2)",
+                dims[1]
+            ),
+        );
+    }
+    Ok(MemberSection {
+        shape: section.shape,
+        dims,
+        shear_factor: factor.unwrap_or(1.0),
+    })
+}
+
 pub(super) fn section(
     c: &Checker,
     raw: Option<&SectionFile>,

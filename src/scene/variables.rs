@@ -253,7 +253,14 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
     vars.extend(lyapunov_outputs(scene));
     for (i, s) in scene.sensors.iter().enumerate() {
         let description = if s.description.is_empty() {
-            format!("{} at {} of the arc length", s.quantity.what(), s.at)
+            match scene.frame {
+                None => format!(
+                    "{} at {} of the arc length",
+                    s.quantity.what(),
+                    s.at.fraction()
+                ),
+                Some(_) => format!("{} at {}", s.quantity.what(), scene.station_text(&s.at)),
+            }
         } else {
             s.description.clone()
         };

@@ -72,7 +72,7 @@ pub fn initial_displacements(
     let length = rod.length_scale();
     let ei = match probe {
         crate::model::Place::Member { member, .. } => rod.members[member].rod.section.ei,
-        crate::model::Place::Joint(_) => {
+        crate::model::Place::Joint(_) | crate::model::Place::Bar { .. } => {
             (rod.members.iter().map(|m| m.rod.section.ei)).fold(f64::INFINITY, f64::min)
         }
     };

@@ -19,6 +19,7 @@ pub mod initial;
 pub mod outputs;
 pub mod readouts;
 pub mod setup;
+mod setup_frame;
 pub mod snapshot;
 pub mod springs;
 mod stepping;

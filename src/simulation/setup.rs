@@ -6,38 +6,79 @@ use crate::model::mesh;
 use crate::model::moving_loads::{MovingLoad, MovingLoads};
 use crate::model::rod::{ROTATION, U1, U2};
 use crate::model::{LoadSet, Place, ReferenceCurve, Rod, Section, Structure};
-use crate::scene::{Geometry, Load, LoadKind, ParamValues, Scene, Slot, Std, TimeLaw};
+use crate::scene::{Geometry, Load, LoadKind, ParamValues, Scene, Slot, Station, Std, TimeLaw};
 
 /// A held (constrained) degree of freedom.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Held {
-    /// Global dof index.
+    /// Global dof index (a direction hold: the node's `u1`).
     pub dof: usize,
     pub support: usize,
-    /// 0 `u1`, 1 `u2`, 2 `w`.
+    /// 0 `u1`, 1 `u2`, 2 `w` (in the support's frame).
     pub component: usize,
     /// Its prescribed value in the initial state.
     pub value: Slot,
     /// The FMI input that moves it, if any.
     pub input: Option<usize>,
+    /// A support at an angle that holds one translation: the unit vector it holds along.
+    pub direction: Option<[f64; 2]>,
+}
+
+impl Held {
+    /// The rows of the equations of motion that give its reaction: its dof, or both
+    /// translations of its node for a direction.
+    pub fn rows(&self) -> &'static [usize] {
+        match self.direction {
+            None => &[0],
+            Some(_) => &[0, 1],
+        }
+    }
+
+    /// Sets the held value in a displacement vector: the dof, or the component along the
+    /// direction (the other left as it is).
+    pub fn set(&self, u: &mut [f64], value: f64) {
+        match self.direction {
+            None => u[self.dof] = value,
+            Some([n1, n2]) => {
+                let (i, j) = (self.dof, self.dof + 1);
+                let along = n1 * u[i] + n2 * u[j];
+                u[i] += (value - along) * n1;
+                u[j] += (value - along) * n2;
+            }
+        }
+    }
 }
 
 /// A point of the structure where something is read.
 pub type Probe = Place;
 
+/// What each member of the scene is in the structure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MemberRole {
+    /// A rod: the structure's member with this index.
+    Rod(usize),
+    /// A truss bar: the structure's axial element with this index.
+    Bar(usize),
+}
+
 pub struct Setup {
     pub structure: Structure,
     pub loads: LoadSet,
-    /// The node of each support.
+    /// The node of each support, and its angle (radians).
     pub support_nodes: Vec<usize>,
+    pub support_angles: Vec<f64>,
     pub held: Vec<Held>,
     pub sensors: Vec<Probe>,
     pub shape: Vec<Probe>,
     /// Every spring, for its force output (and its base's motion).
     pub springs: Vec<SpringOnRod>,
+    /// Per member of the scene (a scene without joints: the rod).
+    pub members: Vec<MemberRole>,
+    /// The axial element of each link.
+    pub links: Vec<usize>,
 }
 
-/// A spring and dashpot from a dof of the rod to its base.
+/// A spring and dashpot from a dof of the structure to its base.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SpringOnRod {
     pub dof: usize,
@@ -47,7 +88,7 @@ pub struct SpringOnRod {
     pub base: Option<usize>,
 }
 
-/// The reference curve of a scene with these values.
+/// The reference curve of a scene without joints with these values.
 pub fn curve(scene: &Scene, values: &ParamValues) -> ReferenceCurve {
     let span = values.std(Std::Span);
     match scene.geometry {
@@ -56,11 +97,12 @@ pub fn curve(scene: &Scene, values: &ParamValues) -> ReferenceCurve {
             let rise = values.get(scene.param_index("H").expect("an arc has H"));
             ReferenceCurve::arc(span, rise)
         }
+        Geometry::Frame => unreachable!("a frame's members have their own curves"),
     }
 }
 
-/// Meshes the scene. The values must have passed [`Scene::check`] (enough elements).
-pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
+/// The scene's `[section]` with the material: its stiffnesses and inertias.
+pub fn scene_section(scene: &Scene, values: &ParamValues) -> Section {
     let (e, nu, rho) = (
         values.std(Std::E),
         values.std(Std::Nu),
@@ -73,8 +115,22 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
             Section::from_properties(e, nu, rho, p.area, p.inertia, p.shear_area)
         }
     };
+    section.ga *= scene.model.shear_factor;
+    section
+}
+
+/// Meshes the scene. The values must have passed [`Scene::check`] (enough elements).
+pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
+    match scene.frame {
+        None => rod_setup(scene, values),
+        Some(_) => super::setup_frame::frame_setup(scene, values),
+    }
+}
+
+/// A scene without joints: its rod.
+fn rod_setup(scene: &Scene, values: &ParamValues) -> Setup {
+    let section = scene_section(scene, values);
     let model = scene.model;
-    section.ga *= model.shear_factor;
     let n = values.elements();
     let (curve, damping) = (curve(scene, values), values.std(Std::Damping));
     // Every station a node: the uniform mesh where the stations are its nodes, else the
@@ -90,63 +146,153 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
         rod = rod.with_rotational_damping(model.rotational_damping);
     }
     let length = rod.curve.length();
-    let attachments = attachments(scene, &rod);
+    let attachments = attachments(scene, &rod, 0);
     if !attachments.is_empty() {
         rod = rod.with_attachments(attachments);
     }
     let mut support_nodes = Vec::new();
     let mut held = Vec::new();
     for (k, s) in scene.supports.iter().enumerate() {
-        let node = rod.node_at(s.at * length);
+        let node = rod.node_at(s.at.fraction() * length);
         support_nodes.push(node);
-        for c in (0..3).filter(|&c| s.fixed[c]) {
-            let input = scene
-                .inputs
-                .iter()
-                .position(|i| i.kind == crate::scene::InputKind::Motion { support: k, dof: c });
-            held.push(Held {
-                dof: 3 * node + c,
-                support: k,
-                component: c,
-                value: s.displace[c],
-                input,
-            });
-        }
+        held.extend(held_dofs(scene, k, 3 * node));
     }
     for h in &held {
         rod.fix(h.dof / 3, h.component);
     }
+    let shapes = load_shapes(scene, values, |at| at.fraction() * length, length);
+    let springs: Vec<SpringOnRod> = (scene.springs.iter())
+        .map(|s| SpringOnRod {
+            dof: 3 * rod.node_at(s.at.fraction() * length) + s.dof,
+            k: s.k,
+            c: s.c,
+            base: s.base,
+        })
+        .collect();
+    let moving_bases: Vec<usize> = (springs.iter())
+        .filter(|s| s.base.is_some())
+        .map(|s| s.dof)
+        .collect();
+    let (shapes, moving) = shapes;
+    let loads = LoadSet::new(&rod, &shapes)
+        .with_moving(MovingLoads::new(&rod.node_s, moving))
+        .with_base_forces(&moving_bases);
+    let mut structure = Structure::single(rod);
+    for h in held.iter().filter(|h| h.direction.is_none()) {
+        structure.hold(h.dof);
+    }
+    for h in held
+        .iter()
+        .filter_map(|h| h.direction.map(|n| (h.dof / 3, n)))
+    {
+        structure.hold_direction(h.0, h.1);
+    }
+    let probe = |at: f64| structure.member_place(0, at * length);
+    let sensors = scene
+        .sensors
+        .iter()
+        .map(|s| probe(s.at.fraction()))
+        .collect();
+    let points = scene.shape_points;
+    let shape = (0..points)
+        .map(|j| probe(j as f64 / (points - 1).max(1) as f64))
+        .collect();
+    Setup {
+        support_angles: scene
+            .supports
+            .iter()
+            .map(|s| s.angle.to_radians())
+            .collect(),
+        structure,
+        loads,
+        support_nodes,
+        held,
+        sensors,
+        shape,
+        springs,
+        members: vec![MemberRole::Rod(0)],
+        links: Vec::new(),
+    }
+}
 
+/// The held dofs of support `k` at the node whose first dof is `first`: its own dofs, or, at an
+/// angle, a direction (one translation held) or both translations.
+pub(super) fn held_dofs(scene: &Scene, k: usize, first: usize) -> Vec<Held> {
+    let s = &scene.supports[k];
+    let input = |c: usize| {
+        (scene.inputs.iter())
+            .position(|i| i.kind == crate::scene::InputKind::Motion { support: k, dof: c })
+    };
+    let angle = s.angle.to_radians();
+    let (c, sn) = (libm::cos(angle), libm::sin(angle));
+    let mut out = Vec::new();
+    let one_translation = s.angle != 0.0 && (s.fixed[0] != s.fixed[1]);
+    for comp in (0..3).filter(|&comp| s.fixed[comp]) {
+        let direction =
+            (one_translation && comp < 2).then(|| exact_direction(s.angle, comp, c, sn));
+        out.push(Held {
+            dof: if direction.is_some() {
+                first
+            } else {
+                first + comp
+            },
+            support: k,
+            component: comp,
+            value: s.displace[comp],
+            input: input(comp),
+            direction,
+        });
+    }
+    out
+}
+
+/// The unit vector of a support frame's axis `comp` (0: along the angle, 1: at 90 degrees
+/// more), exact where the angle is a multiple of 90 degrees.
+fn exact_direction(degrees: f64, comp: usize, c: f64, s: f64) -> [f64; 2] {
+    let quarter = degrees / 90.0;
+    let (c, s) = if quarter == quarter.round() {
+        match (quarter.round() as i64).rem_euclid(4) {
+            0 => (1.0, 0.0),
+            1 => (0.0, 1.0),
+            2 => (-1.0, 0.0),
+            _ => (0.0, -1.0),
+        }
+    } else {
+        (c, s)
+    };
+    if comp == 0 {
+        [c, s]
+    } else {
+        [-s, c]
+    }
+}
+
+/// The load shapes of a rod's scene (`station` the arc length of a station), and its moving
+/// loads.
+fn load_shapes(
+    scene: &Scene,
+    values: &ParamValues,
+    station: impl Fn(crate::scene::Station) -> f64,
+    length: f64,
+) -> (Vec<(LoadShape, LoadTime)>, Vec<MovingLoad>) {
     // Harmonic loads with the same amplitude slot share one nodal vector.
     let mut groups: Vec<Slot> = Vec::new();
-    let mut time_of = |time: TimeLaw, value: Slot| match time {
-        TimeLaw::Constant => LoadTime::Constant,
-        TimeLaw::Input(_) => LoadTime::Input,
-        TimeLaw::Harmonic => {
-            let group = groups.iter().position(|g| *g == value).unwrap_or_else(|| {
-                groups.push(value);
-                groups.len() - 1
-            });
-            LoadTime::Harmonic { group }
-        }
-    };
+    let mut time_of = |time: TimeLaw, value: Slot| time_law(&mut groups, time, value);
     let mut moving = Vec::new();
-    let mut shapes: Vec<(LoadShape, LoadTime)> = scene
-        .loads
-        .iter()
+    let mut shapes: Vec<(LoadShape, LoadTime)> = (scene.loads.iter())
         .map(|l| match l.kind {
             LoadKind::Moving { speed, enter } => {
-                moving.push(MovingLoad {
-                    component: l.direction.component,
-                    sign: l.direction.sign,
-                    speed: speed.eval(values),
-                    enter: enter.eval(values),
-                    magnitude: 0.0,
-                });
+                moving.push(moving_load(l, speed, enter, values));
                 let index = moving.len() - 1;
-                (load_shape(l, length, false), LoadTime::Moving { index })
+                (
+                    load_shape(l, &station, length, false),
+                    LoadTime::Moving { index },
+                )
             }
-            _ => (load_shape(l, length, false), time_of(l.time, l.value)),
+            _ => (
+                load_shape(l, &station, length, false),
+                time_of(l.time, l.value),
+            ),
         })
         .collect();
     // The weight of each point mass under each gravity load, after the scene's loads (its
@@ -155,7 +301,7 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
         for m in &scene.masses {
             let (component, sign) = (l.direction.component, l.direction.sign);
             let at = LoadShape::Point {
-                s: m.at * length,
+                s: station(m.at),
                 component,
                 sign,
             };
@@ -170,51 +316,52 @@ pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
             ..
         } = l.kind
         {
-            shapes.push((load_shape(l, length, true), time_of(l.time, end)));
+            shapes.push((load_shape(l, &station, length, true), time_of(l.time, end)));
         }
     }
-    let springs: Vec<SpringOnRod> = (scene.springs.iter())
-        .map(|s| SpringOnRod {
-            dof: 3 * rod.node_at(s.at * length) + s.dof,
-            k: s.k,
-            c: s.c,
-            base: s.base,
-        })
-        .collect();
-    let moving_bases: Vec<usize> = (springs.iter())
-        .filter(|s| s.base.is_some())
-        .map(|s| s.dof)
-        .collect();
-    let loads = LoadSet::new(&rod, &shapes)
-        .with_moving(MovingLoads::new(&rod.node_s, moving))
-        .with_base_forces(&moving_bases);
-    let structure = Structure::single(rod);
-    let probe = |at: f64| structure.member_place(0, at * length);
+    (shapes, moving)
+}
 
-    let sensors = scene.sensors.iter().map(|s| probe(s.at)).collect();
-    let points = scene.shape_points;
-    let shape = (0..points)
-        .map(|j| probe(j as f64 / (points - 1).max(1) as f64))
-        .collect();
-    Setup {
-        structure,
-        loads,
-        support_nodes,
-        held,
-        sensors,
-        shape,
-        springs,
+/// The time law of a load; harmonic loads with the same amplitude slot share a group.
+pub(super) fn time_law(groups: &mut Vec<Slot>, time: TimeLaw, value: Slot) -> LoadTime {
+    match time {
+        TimeLaw::Constant => LoadTime::Constant,
+        TimeLaw::Input(_) => LoadTime::Input,
+        TimeLaw::Harmonic => {
+            let group = groups.iter().position(|g| *g == value).unwrap_or_else(|| {
+                groups.push(value);
+                groups.len() - 1
+            });
+            LoadTime::Harmonic { group }
+        }
     }
 }
 
-/// The nodal pattern of a load at unit magnitude. A linearly varying load is two: the part
-/// falling from 1 at `from` to 0 at `to` (`rising = false`, scaled by `value`) and the part
-/// rising from 0 to 1 (scaled by `value_end`).
-pub fn load_shape(load: &Load, length: f64, rising: bool) -> LoadShape {
+/// A moving load's direction, speed and entry time.
+pub(super) fn moving_load(l: &Load, speed: Slot, enter: Slot, values: &ParamValues) -> MovingLoad {
+    MovingLoad {
+        component: l.direction.component,
+        sign: l.direction.sign,
+        speed: speed.eval(values),
+        enter: enter.eval(values),
+        magnitude: 0.0,
+    }
+}
+
+/// The nodal pattern of a load at unit magnitude on a rod (`station`: the arc length of a
+/// station). A linearly varying load is two: the part falling from 1 at `from` to 0 at `to`
+/// (`rising = false`, scaled by `value`) and the part rising from 0 to 1 (scaled by
+/// `value_end`).
+pub fn load_shape(
+    load: &Load,
+    station: &dyn Fn(crate::scene::Station) -> f64,
+    length: f64,
+    rising: bool,
+) -> LoadShape {
     let (component, sign) = (load.direction.component, load.direction.sign);
     match load.kind {
         LoadKind::Point { at } | LoadKind::Moment { at } => LoadShape::Point {
-            s: at * length,
+            s: station(at),
             component,
             sign,
         },
@@ -229,6 +376,7 @@ pub fn load_shape(load: &Load, length: f64, rising: bool) -> LoadShape {
             from,
             to,
             value_end,
+            ..
         } => {
             let (start, end) = match (value_end, rising) {
                 (None, _) => (1.0, 1.0),
@@ -273,13 +421,18 @@ pub fn load_magnitudes(scene: &Scene, values: &ParamValues, inputs: &[f64], out:
     }
 }
 
-/// The scene's point masses, springs, dashpots and foundations on the rod's dofs.
-fn attachments(scene: &Scene, rod: &Rod) -> Attachments {
+/// The scene's point masses, springs, dashpots and foundations on member `member`'s own
+/// nodes (at stations inside it; a scene without joints: all of them).
+pub(super) fn attachments(scene: &Scene, rod: &Rod, member: usize) -> Attachments {
     let length = rod.curve.length();
     let node = |at: f64| rod.node_at(at * length);
+    let on = |s: &Station| match *s {
+        Station::On { member: m, at } if m == member => Some(at),
+        _ => None,
+    };
     let mut a = Attachments::default();
-    for m in &scene.masses {
-        let n = node(m.at);
+    for (m, at) in scene.masses.iter().filter_map(|m| Some((m, on(&m.at)?))) {
+        let n = node(at);
         for (k, value) in [(U1, m.m), (U2, m.m), (ROTATION, m.j)] {
             if value > 0.0 {
                 a.masses.push(OnDof {
@@ -289,14 +442,14 @@ fn attachments(scene: &Scene, rod: &Rod) -> Attachments {
             }
         }
     }
-    for s in &scene.springs {
-        let dof = 3 * node(s.at) + s.dof;
+    for (s, at) in scene.springs.iter().filter_map(|s| Some((s, on(&s.at)?))) {
+        let dof = 3 * node(at) + s.dof;
         a.springs.push(OnDof { dof, value: s.k });
         if s.c > 0.0 {
             a.dashpots.push(OnDof { dof, value: s.c });
         }
     }
-    for f in &scene.foundations {
+    for f in scene.foundations.iter().filter(|f| f.member == member) {
         // Its ends are nodes: the elements between them are wholly on it.
         let (first, last) = (node(f.from), node(f.to));
         for (e, el) in rod.elements.iter().enumerate().take(last).skip(first) {

@@ -8,21 +8,22 @@ use georod::integrator::continuation::{
 };
 use georod::model::loads::LoadShape;
 use georod::model::modal::modes as natural_modes;
-use georod::model::{PointOnRod, Rod};
+use georod::model::modal_subspace::lowest_modes;
+use georod::model::{Assembly, Place, Structure};
 use georod::scene::{LoadKind, Scene, TimeLaw};
 use georod::simulation::{initial, setup};
 use std::fmt::Write as _;
 
 /// The static path of a scene with its critical points and its equilibria at one load.
 struct StaticPath {
-    rod: Rod,
+    rod: Structure,
     q: Vec<f64>,
     path: Path,
     settings: ContinuationSettings,
     /// Index of the starting point (the initial state) in `path`.
     start: usize,
     /// Where the reported sensor reads, and its dof.
-    sensor: (String, PointOnRod, usize),
+    sensor: (String, Place, usize),
 }
 
 /// The load the path follows: `--load-name`, or the first point load.
@@ -52,17 +53,30 @@ fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
     let values = scene
         .values_with(o.overrides.iter().map(|(k, v)| (k.as_str(), *v)))
         .map_err(|e| e.to_string())?;
-    let s = setup::setup(&scene, &values);
+    let mut s = setup::setup(&scene, &values);
     let inputs: Vec<f64> = (0..scene.inputs.len())
         .map(|i| georod::scene::variables::input_start(&scene, i, &values))
         .collect();
     let u0 =
         initial::initial_displacements(&scene, &values, &s, &inputs).map_err(|e| e.to_string())?;
-    let rod = s.structure.rod().clone();
-    let length = rod.curve.length();
-    let load = &scene.loads[path_load(&scene, o)?];
-    let shape = setup::load_shape(load, length, false);
-    let mut q = shape.nodal_vector(&rod);
+    let index = path_load(&scene, o)?;
+    let load = &scene.loads[index];
+    if matches!(load.kind, LoadKind::Moving { .. }) {
+        return Err(format!(
+            "--load-name: `{}` moves; a static path follows a load that stays",
+            load.name
+        ));
+    }
+    // The path load's nodal vector: the load set with that load alone at magnitude 1, at t = 0.
+    let mut unit = vec![0.0; s.loads.len()];
+    unit[index] = 1.0;
+    s.loads.set_magnitudes(&unit);
+    s.loads.frequency = 0.0;
+    let mut q = vec![0.0; s.structure.dofs()];
+    s.loads.add_to(0.0, &mut q, 1.0);
+    let sensor = sensor(&scene, o, &s)?;
+    let rod = s.structure;
+    let length = rod.length_scale();
     let mut load0 = 0.0;
     for l in scene.loads.iter().filter(|l| l.time == TimeLaw::Constant) {
         let magnitude = l.value.eval(&values);
@@ -79,12 +93,19 @@ fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
         }
     }
     if o.imperfection != 0.0 {
+        if !rod.is_single() {
+            return Err(
+                "--imperfection: a quarter-span load is a single rod's; on a frame add a \
+                        small [[load]] where the imperfection belongs"
+                    .to_string(),
+            );
+        }
         let quarter = LoadShape::Point {
             s: 0.25 * length,
             component: load.direction.component,
             sign: load.direction.sign,
         };
-        for (a, b) in q.iter_mut().zip(quarter.nodal_vector(&rod)) {
+        for (a, b) in q.iter_mut().zip(quarter.nodal_vector(rod.rod())) {
             *a += o.imperfection * b;
         }
     }
@@ -98,7 +119,6 @@ fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
         Some(i) => 4.0 * values.get(i),
         None => 0.4 * length,
     };
-    let sensor = sensor(&scene, o, &rod)?;
     let (path, start) = follow_both_ways(&rod, &u0, load0, &q, &settings);
     Ok(StaticPath {
         rod,
@@ -111,7 +131,7 @@ fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
 }
 
 /// The displacement sensor reported along the path: `--sensor`, or the first `u2` sensor.
-fn sensor(scene: &Scene, o: &Options, rod: &Rod) -> Result<(String, PointOnRod, usize), String> {
+fn sensor(scene: &Scene, o: &Options, s: &setup::Setup) -> Result<(String, Place, usize), String> {
     let index = match &o.sensor {
         Some(name) => scene.sensors.iter().position(|s| &s.name == name),
         None => scene
@@ -119,12 +139,10 @@ fn sensor(scene: &Scene, o: &Options, rod: &Rod) -> Result<(String, PointOnRod, 
             .iter()
             .position(|s| s.quantity.displacement_dof() == Some(1)),
     };
-    let (s, dof) = index
-        .map(|i| &scene.sensors[i])
-        .and_then(|s| Some((s, s.quantity.displacement_dof()?)))
+    let (i, dof) = index
+        .and_then(|i| Some((i, scene.sensors[i].quantity.displacement_dof()?)))
         .ok_or("--sensor: name a displacement sensor of the scene")?;
-    let point = rod.point_at(s.at * rod.curve.length());
-    Ok((s.name.clone(), point, dof))
+    Ok((scene.sensors[i].name.clone(), s.sensors[i], dof))
 }
 
 impl StaticPath {
@@ -141,7 +159,7 @@ impl StaticPath {
                 .collect();
         found.sort_by(|a, b| b.0.total_cmp(&a.0));
         // The same equilibrium reached twice (e.g. at the start and by the path) counts once.
-        let length = self.rod.curve.length();
+        let length = self.rod.length_scale();
         found.dedup_by(|a, b| (a.0 - b.0).abs() <= 1e-8 * length);
         found
             .into_iter()
@@ -214,20 +232,29 @@ pub fn modes(o: &Options) -> Result<String, String> {
         std::fs::write(path, rows).map_err(|e| format!("{path}: {e}"))?;
     }
     for (name, w, e) in found {
-        for (k, m) in natural_modes(&sp.rod, &e.u)
-            .iter()
-            .take(o.count)
-            .enumerate()
-        {
+        // A rod: the dense eigenproblem, which also tells symmetric modes; a frame: the lowest
+        // modes by subspace iteration.
+        let modes: Vec<(f64, String)> = if sp.rod.is_single() {
+            (natural_modes(sp.rod.rod(), &e.u).iter().take(o.count))
+                .map(|m| (m.omega_squared, m.symmetric.to_string()))
+                .collect()
+        } else {
+            let count = o.count.min(sp.rod.dofs() - sp.rod.constrained().len());
+            (lowest_modes(&sp.rod, &e.u, count).map_err(|why| format!("modes: {why}"))?)
+                .into_iter()
+                .map(|(lambda, _)| (lambda, String::new()))
+                .collect()
+        };
+        for (k, (lambda, symmetric)) in modes.iter().enumerate() {
+            let omega = lambda.signum() * lambda.abs().sqrt();
             let _ = writeln!(
                 csv,
-                "{name},{w:.8e},{},{},{:.8e},{:.8e},{:.8e},{}",
+                "{name},{w:.8e},{},{},{:.8e},{:.8e},{:.8e},{symmetric}",
                 e.negative_eigenvalues,
                 k + 1,
-                m.omega_squared,
-                m.omega(),
-                m.hertz(),
-                m.symmetric
+                lambda,
+                omega,
+                omega / std::f64::consts::TAU,
             );
         }
     }

@@ -190,7 +190,7 @@ impl Structure {
 
     /// Adds each slave's row to its master's and zeroes it (a force vector made of the
     /// members' own rows).
-    pub(crate) fn fold(&self, x: &mut [f64]) {
+    pub fn fold(&self, x: &mut [f64]) {
         for &(s, m) in &self.ties {
             x[m] += x[s];
             x[s] = 0.0;

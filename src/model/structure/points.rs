@@ -15,6 +15,8 @@ pub enum Place {
     },
     /// A joint (its node).
     Joint(usize),
+    /// The fraction `t` of axial element `bar` (a truss bar) from its first node to its second.
+    Bar { bar: usize, t: f64 },
 }
 
 impl Structure {
@@ -35,6 +37,11 @@ impl Structure {
                 m.rod.interpolate(&x[m.range()], point, k)
             }
             Place::Joint(j) => x[3 * j + k],
+            Place::Bar { bar, t } if k < 2 => {
+                let [a, b] = self.axial[bar].nodes;
+                (1.0 - t) * x[3 * a + k] + t * x[3 * b + k]
+            }
+            Place::Bar { .. } => 0.0,
         }
     }
 
@@ -43,6 +50,10 @@ impl Structure {
         match place {
             Place::Member { member, s, .. } => self.members[member].rod.reference_position(s),
             Place::Joint(j) => self.joints[j],
+            Place::Bar { bar, t } => {
+                let [a, b] = self.axial[bar].reference;
+                (1.0 - t) * a + t * b
+            }
         }
     }
 
@@ -64,6 +75,11 @@ impl Structure {
                 out[offset + 3 * (point.element + 1) + k] += nb * value;
             }
             Place::Joint(j) => out[3 * j + k] += value,
+            Place::Bar { bar, t } => {
+                let [a, b] = self.axial[bar].nodes;
+                out[3 * a + k] += (1.0 - t) * value;
+                out[3 * b + k] += t * value;
+            }
         }
     }
 
@@ -79,6 +95,7 @@ impl Structure {
     pub fn node_dof(&self, place: Place, k: usize) -> usize {
         match place {
             Place::Joint(j) => 3 * j + k,
+            Place::Bar { bar, t } => 3 * self.axial[bar].nodes[usize::from(t > 0.5)] + k,
             Place::Member { member, point, .. } => {
                 let m = &self.members[member];
                 let node = if point.weights.1 > 0.5 {
