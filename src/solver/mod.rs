@@ -2,7 +2,6 @@
 //! integrators ask of any system matrix, and the reductions over dof vectors that the time
 //! steps use.
 pub mod block_tridiagonal;
-pub mod sparse_blocks;
 pub mod system;
 pub mod vector;
 
