@@ -15,6 +15,13 @@
 //! step of whichever of its nodes is eliminated first, so a step reads its own blocks and
 //! updates only blocks further on: the factorization walks memory forward (on a path, block
 //! after block).
+//!
+//! Cost: the block operations of the block-tridiagonal elimination, per pair of a step's later
+//! neighbours. Each step waits for the steps before it that update its pivot: a path in the
+//! minimum-degree order (from one end) is a single such chain, and its factorization and solve
+//! take about 1.5 times those of [`BlockTridiagonal`](super::BlockTridiagonal), whose twisted
+//! order runs two chains side by side; [`BlockPattern::with_order`] with
+//! [`BlockPattern::twisted_order`] is that elimination, to the bit.
 mod assemble;
 mod factor;
 mod ordering;

@@ -1,5 +1,5 @@
-//! The inertia and the determinant's sign from the pivots, against the dense symmetric
-//! eigenvalues (nalgebra), and near a zero eigenvalue against [`BlockTridiagonal`].
+//! The pivots: singular ones reported, the inertia and the determinant's sign against the dense
+//! symmetric eigenvalues (nalgebra), and near a zero eigenvalue against [`BlockTridiagonal`].
 use super::tests::{case, graphs, path_pair};
 use super::*;
 use crate::solver::{BlockTridiagonal, SingularMatrix};
@@ -96,4 +96,26 @@ fn zero_eigenvalue_is_a_singular_pivot() {
     s.add_diagonal(w, -1.0);
     assert_eq!(s.factor_with_inertia(), Err(SingularMatrix { block: 3 }));
     assert_eq!(t.factor_with_inertia(), Err(SingularMatrix { block: 3 }));
+}
+
+/// A pivot singular to working precision is reported with its node: a leaf's own block, and
+/// the last pivot of a star whose Schur complement vanishes (`3 I - 3 (I I^-1 I)`: leaves 1
+/// and 2, then the center, of degree one then, and leaf 3).
+#[test]
+fn singular_pivot_is_reported_with_its_node() {
+    let star: Vec<_> = (1..4).map(|i| (0, i)).collect();
+    let pattern = Arc::new(BlockPattern::new(4, &star));
+    let mut a = SparseBlocks::new(pattern.clone());
+    for i in 1..4 {
+        let slots = pattern.pair_slots(0, i).unwrap();
+        let identity = Matrix3::identity();
+        a.add_pair_slots(slots, &identity, &identity, &identity, 1.0);
+    }
+    let mut leaf = a.clone();
+    assert_eq!(pattern.order(), [1, 2, 0, 3]);
+    assert_eq!(a.factor(), Err(SingularMatrix { block: 3 }));
+    let dependent = Matrix3::new(1.0, 2.0, 3.0, 2.0, 4.0, 6.0, 0.0, 1.0, 1.0);
+    leaf.add_block(pattern.slot(2, 2).unwrap(), &dependent, 1.0);
+    leaf.add_block(pattern.slot(2, 2).unwrap(), &Matrix3::identity(), -1.0);
+    assert_eq!(leaf.factor(), Err(SingularMatrix { block: 2 }));
 }
