@@ -180,7 +180,7 @@ fn schur_product<const SYMMETRIC: bool>(a: &Matrix3<f64>, b: &Matrix3<f64>) -> M
 
 /// The adjugate (its cofactors reused for the determinant) and the determinant: the inverse is
 /// `adjugate / det`.
-pub(super) fn adjugate_and_determinant(m: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
+pub(crate) fn adjugate_and_determinant(m: &Matrix3<f64>) -> (Matrix3<f64>, f64) {
     let c00 = m[(1, 1)] * m[(2, 2)] - m[(1, 2)] * m[(2, 1)];
     let c01 = m[(1, 2)] * m[(2, 0)] - m[(1, 0)] * m[(2, 2)];
     let c02 = m[(1, 0)] * m[(2, 1)] - m[(1, 1)] * m[(2, 0)];

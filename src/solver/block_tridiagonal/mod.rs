@@ -9,6 +9,7 @@ mod solve;
 #[cfg(test)]
 mod tests;
 
+pub(crate) use factor::adjugate_and_determinant;
 use nalgebra::{Matrix3, Vector3};
 use solve::block;
 use std::fmt;
