@@ -237,7 +237,8 @@ print(result["time"][-1], result[{shown}][-1])"#,
             "<p>The outputs <code>shape_x[i]</code>, <code>shape_y[i]</code> (i = 1..{}) sample \
              the deformed rod at equally spaced arc lengths; <code>python -m georod_tools animate \
              {}.fmu</code> draws them over time.</p>",
-            scene.shape_points, name
+            scene.shape_samples(),
+            name
         );
     }
     if !scene.shape_fields.is_empty() {

@@ -137,7 +137,7 @@ mod tests {
         assert!(md
             .xml
             .contains(&format!(r#"instantiationToken="{}""#, md.token)));
-        let dimension = format!(r#"<Dimension start="{}"/>"#, scene.shape_points);
+        let dimension = format!(r#"<Dimension start="{}"/>"#, scene.shape_samples());
         for name in ["shape_x", "shape_y"] {
             let at = md.xml.find(&format!(r#"name="{name}""#)).unwrap();
             let rest = &md.xml[at..];

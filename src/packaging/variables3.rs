@@ -125,7 +125,7 @@ mod tests {
         for base in &families {
             let array = layout.variables.iter().find(|v| v.name == *base).unwrap();
             assert!(array.array);
-            assert_eq!(array.len, scene.shape_points);
+            assert_eq!(array.len, scene.shape_samples());
             let names: Vec<String> = layout
                 .element_vrs(array)
                 .iter()

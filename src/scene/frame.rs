@@ -148,6 +148,29 @@ impl Frame {
 }
 
 impl super::Scene {
+    /// The number of shape samples: `[shape] points` along the rod, or per member of a frame
+    /// (in the order of the file).
+    pub fn shape_samples(&self) -> usize {
+        match &self.frame {
+            None => self.shape_points,
+            Some(f) => self.shape_points * f.members.len(),
+        }
+    }
+
+    /// Where shape sample `i` is, in words: "at {at} of the arc length" as it always read, or
+    /// "of member {name} at {at} of its arc length".
+    pub fn shape_sample_text(&self, i: usize) -> String {
+        let points = self.shape_points;
+        let at = (i % points) as f64 / (points - 1) as f64;
+        match &self.frame {
+            None => format!("at {at} of the arc length"),
+            Some(f) => format!(
+                "of member {} at {at} of its arc length",
+                f.members[i / points].name
+            ),
+        }
+    }
+
     /// A station in words: its fraction in a scene without joints (as it always read), a
     /// joint or a fraction of a member in a frame.
     pub fn station_text(&self, s: &Station) -> String {

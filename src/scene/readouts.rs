@@ -76,16 +76,14 @@ pub const FREQUENCY_VR: u32 = 52;
 /// The outputs `shape_<field>[i]` and `frequency[k]`.
 pub(super) fn outputs(scene: &Scene) -> Vec<variables::Variable> {
     let mut vars = Vec::new();
-    let points = scene.shape_points;
     for (field, q) in scene.shape_fields.iter().enumerate() {
         let base = SHAPE_FIELD_VR + (field * variables::MAX_SHAPE_POINTS) as u32;
-        for point in 0..points {
-            let at = point as f64 / (points - 1) as f64;
+        for point in 0..scene.shape_samples() {
             vars.push(variables::output(
                 format!("shape_{}[{}]", q.name(), point + 1),
                 base + point as u32,
                 Some(q.unit()),
-                format!("{} at {at} of the arc length", q.what()),
+                format!("{} {}", q.what(), scene.shape_sample_text(point)),
                 OutputId::ShapeField { field, point },
             ));
         }

@@ -119,6 +119,19 @@ pub enum OutputId {
     },
     /// The force (moment on `w`) of spring `k` and its dashpot on the rod.
     SpringForce(usize),
+    /// Component 0 (`R1`) or 1 (`R2`) of a support's reaction in its own frame.
+    SupportFrame {
+        support: usize,
+        component: usize,
+    },
+    /// The normal force of truss member `member` (index in the frame) at its start (0) or
+    /// end (1).
+    BarForce {
+        member: usize,
+        end: usize,
+    },
+    /// The force of link `k`.
+    LinkForce(usize),
     ShapeX(usize),
     ShapeY(usize),
     /// `[shape] fields` entry `field` at shape sample `point`.
@@ -170,6 +183,12 @@ pub const SHAPE_X_VR: u32 = 10_000;
 pub const SHAPE_Y_VR: u32 = 20_000;
 /// Spring forces `<spring>_force`, after every other block.
 pub const SPRING_FORCE_VR: u32 = 1_000_000;
+/// A support's reactions in its own frame (`_R1`, `_R2`), two per support index.
+pub const SUPPORT_FRAME_VR: u32 = 1_100_000;
+/// Truss bar forces, two per member index of the frame.
+pub const BAR_FORCE_VR: u32 = 1_200_000;
+/// Link forces `<link>_force`.
+pub const LINK_FORCE_VR: u32 = 1_300_000;
 pub const REACTION_SUFFIXES: [&str; 3] = ["Rx", "Ry", "M"];
 
 /// The most scene parameters, inputs, sensors, supports and shape samples whose value
@@ -327,18 +346,92 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
         ("x", SHAPE_X_VR, OutputId::ShapeX as fn(usize) -> OutputId),
         ("y", SHAPE_Y_VR, OutputId::ShapeY as fn(usize) -> OutputId),
     ] {
-        for i in 0..scene.shape_points {
-            let at = i as f64 / (scene.shape_points - 1) as f64;
+        for i in 0..scene.shape_samples() {
+            let description = match scene.frame {
+                None => {
+                    let at = i as f64 / (scene.shape_points - 1) as f64;
+                    format!("Current {axis} position of the rod at {at} of its arc length")
+                }
+                Some(_) => format!("Current {axis} position {}", scene.shape_sample_text(i)),
+            };
             vars.push(output(
                 format!("shape_{axis}[{}]", i + 1),
                 base + i as u32,
                 Some("m"),
-                format!("Current {axis} position of the rod at {at} of its arc length"),
+                description,
                 make(i),
             ));
         }
     }
     vars.extend(super::readouts::outputs(scene));
+    vars.extend(frame_outputs(scene));
+    vars
+}
+
+/// A frame's own outputs: supports at an angle in their frame (`_R1`, `_R2`), truss bar forces
+/// (`<member>_N_start`, `_N_end`) and link forces (`<link>_force`).
+fn frame_outputs(scene: &Scene) -> Vec<Variable> {
+    let mut vars = Vec::new();
+    for (k, s) in scene
+        .supports
+        .iter()
+        .enumerate()
+        .filter(|(_, s)| s.angle != 0.0)
+    {
+        for c in 0..2 {
+            vars.push(output(
+                format!("{}_R{}", s.name, c + 1),
+                SUPPORT_FRAME_VR + 2 * k as u32 + c as u32,
+                Some("N"),
+                format!(
+                    "Reaction force of support {} on the structure along its own axis {} (turned \
+                     by {} degrees from e{}); averaged like {0}_Rx",
+                    s.name,
+                    c + 1,
+                    s.angle,
+                    c + 1
+                ),
+                OutputId::SupportFrame {
+                    support: k,
+                    component: c,
+                },
+            ));
+        }
+    }
+    let Some(frame) = &scene.frame else {
+        return vars;
+    };
+    for (m, member) in frame.members.iter().enumerate() {
+        if member.kind != super::frame::MemberKind::Truss {
+            continue;
+        }
+        for (end, suffix) in ["start", "end"].iter().enumerate() {
+            vars.push(output(
+                format!("{}_N_{suffix}", member.name),
+                BAR_FORCE_VR + 2 * m as u32 + end as u32,
+                Some("N"),
+                format!(
+                    "Normal force of truss member {} at its {suffix} (tension positive)",
+                    member.name
+                ),
+                OutputId::BarForce { member: m, end },
+            ));
+        }
+    }
+    for (k, l) in frame.links.iter().enumerate() {
+        vars.push(output(
+            format!("{}_force", l.name),
+            LINK_FORCE_VR + k as u32,
+            Some("N"),
+            format!(
+                "Force of link {} along its current line (tension positive), spring and dashpot; \
+                 averaged over the last communication step (before the first step: the static \
+                 force)",
+                l.name
+            ),
+            OutputId::LinkForce(k),
+        ));
+    }
     vars
 }
 

@@ -36,7 +36,7 @@ pub fn initial_displacements(
     let mut u = vec![0.0; rod.dofs()];
     if scene.initial.state == InitialState::Reference {
         for (h, x) in setup.held.iter().zip(&targets) {
-            u[h.dof] = *x;
+            h.set(&mut u, *x);
         }
         return Ok(u);
     }
@@ -179,7 +179,7 @@ fn ramp_with(
         }
         let before = u.to_vec();
         for (h, x) in setup.held.iter().zip(targets) {
-            u[h.dof] = lambda * x;
+            h.set(u, lambda * x);
         }
         match solver.solve(rod, u, &f) {
             Ok(_) => {

@@ -16,6 +16,7 @@
 //! (inputs, their derivatives, tunable parameters).
 mod analysis;
 pub mod initial;
+mod links;
 pub mod outputs;
 pub mod readouts;
 pub mod setup;
@@ -166,8 +167,10 @@ impl Simulation {
         }
         let static_reactions = supports::static_reactions(&setup, &initial.u, &inputs);
         let mut integrator = Midpoint::new(&setup.structure);
-        let held: Vec<usize> = setup.held.iter().map(|h| h.dof).collect();
-        integrator.keep_rows(&held);
+        let rows: Vec<usize> = (setup.held.iter())
+            .flat_map(|h| h.rows().iter().map(move |r| h.dof + r))
+            .collect();
+        integrator.keep_rows(&rows);
         integrator.scheme = if values.std(Std::Integrator) == 2.0 {
             Scheme::EnergyMomentum
         } else {

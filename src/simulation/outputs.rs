@@ -25,6 +25,25 @@ impl Simulation {
             }
             OutputId::Frequency(k) => self.frequency(k),
             OutputId::SpringForce(k) => self.reactions()[self.setup.support_nodes.len() + k][0],
+            OutputId::LinkForce(k) => {
+                let first = self.setup.support_nodes.len() + self.setup.springs.len();
+                self.reactions()[first + k][0]
+            }
+            OutputId::SupportFrame { support, component } => {
+                let [rx, ry, _] = self.reactions()[support];
+                let a = self.setup.support_angles[support];
+                let (c, s) = (libm::cos(a), libm::sin(a));
+                match component {
+                    0 => rx * c + ry * s,
+                    _ => -rx * s + ry * c,
+                }
+            }
+            OutputId::BarForce { member, .. } => match self.setup.members[member] {
+                super::setup::MemberRole::Bar(b) => {
+                    self.structure().axial[b].force(&self.state().u)
+                }
+                super::setup::MemberRole::Rod(_) => unreachable!("bar outputs are trusses'"),
+            },
             OutputId::Lyapunov { index, per_period } => self
                 .analysis
                 .exponent(index, per_period.then_some(self.setup().loads.frequency)),
@@ -50,7 +69,7 @@ impl Simulation {
         if let Some(e) = self.energies.get() {
             return e;
         }
-        let rod = self.rod();
+        let rod = self.structure();
         let e = (
             rod.kinetic_energy(&self.state().v),
             rod.strain_energy(&self.state().u)

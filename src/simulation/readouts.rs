@@ -29,6 +29,26 @@ impl Fibers {
             depth: scene.section.depth(values).unwrap_or(f64::NAN),
         }
     }
+
+    /// Per member of the scene: its own section's, or the scene's.
+    pub fn of_members(scene: &Scene, values: &ParamValues) -> Vec<Fibers> {
+        let Some(frame) = &scene.frame else {
+            return vec![Fibers::of(scene, values)];
+        };
+        (frame.members.iter())
+            .map(|m| match &m.section {
+                None => Fibers::of(scene, values),
+                Some(own) => {
+                    let p = own.properties();
+                    Fibers {
+                        area: p.area,
+                        inertia: p.inertia,
+                        depth: own.depth().unwrap_or(f64::NAN),
+                    }
+                }
+            })
+            .collect()
+    }
 }
 
 /// Accelerations of the last sub-step and the section's fiber geometry.
@@ -39,8 +59,9 @@ pub(super) struct Readouts {
     trial_accelerations: Vec<f64>,
     /// The trial's velocities before its last sub-step.
     velocity_before: Vec<f64>,
-    /// Per member.
+    /// Per member of the structure (rods), and per truss bar (axial elements in order).
     fibers: Vec<Fibers>,
+    bar_fibers: Vec<Fibers>,
     /// `frequency[k]` in Hz (`[modes] count` of them).
     frequencies: Vec<f64>,
 }
@@ -71,7 +92,8 @@ impl Readouts {
             accelerations: vec![0.0; n],
             trial_accelerations: vec![0.0; n],
             velocity_before: vec![0.0; n],
-            fibers: vec![Fibers::of(scene, values)],
+            fibers: member_fibers(scene, values, setup, false),
+            bar_fibers: member_fibers(scene, values, setup, true),
             frequencies: natural_frequencies(&setup.structure, initial, scene.modes)?,
         })
     }
@@ -121,6 +143,15 @@ impl Readouts {
     }
 }
 
+/// The fiber geometry of each rod member of the structure (or of each bar, with `bars`).
+fn member_fibers(scene: &Scene, values: &ParamValues, setup: &Setup, bars: bool) -> Vec<Fibers> {
+    let all = Fibers::of_members(scene, values);
+    (setup.members.iter().zip(all))
+        .filter(|(role, _)| matches!(role, super::setup::MemberRole::Bar(_)) == bars)
+        .map(|(_, f)| f)
+        .collect()
+}
+
 /// The `count` lowest natural frequencies (Hz) of the rod about `u` (undamped, the tangent
 /// stiffness at `u` with the held dofs removed, the mass matrix of the model); an unstable
 /// direction (`omega^2 < 0`) gives `-sqrt(-omega^2) / (2 pi)`.
@@ -159,11 +190,32 @@ impl Simulation {
         }
     }
 
+    /// A section quantity of a truss bar: its normal force, constant along it (no shear, no
+    /// moment).
+    fn bar_quantity(&self, q: SectionQuantity, bar: usize) -> f64 {
+        let b = &self.structure().axial[bar];
+        let n = b.force(&self.state().u);
+        let area = self.readouts.bar_fibers[bar].area;
+        match q {
+            SectionQuantity::N => n,
+            SectionQuantity::Eps => n / (b.k * b.rest),
+            SectionQuantity::SigmaTop | SectionQuantity::SigmaBottom => n / area,
+            SectionQuantity::Q
+            | SectionQuantity::M
+            | SectionQuantity::Gamma
+            | SectionQuantity::Kappa => 0.0,
+        }
+    }
+
     /// A section quantity at a place of a member (docs/model.md, "Section quantities"; a
     /// joint has no section: the scene names the member there).
     pub fn section_quantity(&self, q: SectionQuantity, place: Place) -> f64 {
-        let Place::Member { member, s, .. } = place else {
-            unreachable!("a section quantity is read on a member (checked with the scene)")
+        let (member, s) = match place {
+            Place::Member { member, s, .. } => (member, s),
+            Place::Bar { bar, .. } => return self.bar_quantity(q, bar),
+            Place::Joint(_) => {
+                unreachable!("a section quantity is read on a member (checked with the scene)")
+            }
         };
         let m = &self.structure().members[member];
         let rod = &m.rod;

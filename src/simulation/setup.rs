@@ -157,7 +157,7 @@ fn rod_setup(scene: &Scene, values: &ParamValues) -> Setup {
         support_nodes.push(node);
         held.extend(held_dofs(scene, k, 3 * node));
     }
-    for h in &held {
+    for h in held.iter().filter(|h| h.direction.is_none()) {
         rod.fix(h.dof / 3, h.component);
     }
     let shapes = load_shapes(scene, values, |at| at.fraction() * length, length);

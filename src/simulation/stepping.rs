@@ -179,6 +179,7 @@ impl Simulation {
             self.analysis.substep(s, &self.integrator, t_k, dt);
             self.book(t_k + 0.5 * dt, dt);
             self.book_springs(k, substeps, dt);
+            self.book_links(dt);
         }
         self.readouts.after_last_substep(&self.trial.v, dt);
         // Moving supports end the step exactly at their targets (not a sum of increments).

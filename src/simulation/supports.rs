@@ -125,9 +125,23 @@ pub fn book_reactions(
     ledger: &mut EnergyLedger,
 ) {
     let du = integrator.last_increment();
-    for (h, &r) in setup.held.iter().zip(integrator.held_rows()) {
-        impulses[h.support][h.component] += dt * r;
-        ledger.support_work += r * du[h.dof];
+    let mut rows = integrator.held_rows().iter();
+    for h in &setup.held {
+        match h.direction {
+            None => {
+                let r = *rows.next().expect("a row per held dof");
+                impulses[h.support][h.component] += dt * r;
+                ledger.support_work += r * du[h.dof];
+            }
+            Some([n1, n2]) => {
+                // The support pushes along its direction only: the rows' component along it.
+                let (rx, ry) = (*rows.next().expect("u1"), *rows.next().expect("u2"));
+                let along = n1 * rx + n2 * ry;
+                impulses[h.support][0] += dt * along * n1;
+                impulses[h.support][1] += dt * along * n2;
+                ledger.support_work += along * (n1 * du[h.dof] + n2 * du[h.dof + 1]);
+            }
+        }
     }
 }
 
@@ -151,15 +165,17 @@ pub fn static_reactions(setup: &Setup, u: &[f64], inputs: &[f64]) -> Vec<[f64; 3
             Some(f) => Structure::node_rows(f, node),
         };
         let mut r = [0.0; 3];
+        let along_direction = rod.held_directions().iter().any(|&(n, _)| n == node);
         for c in 0..3 {
-            if rod.is_held(3 * node + c) {
+            if rod.is_held(3 * node + c) || (along_direction && c < 2) {
                 r[c] = f[c] - setup.loads.constant_at(3 * node + c);
             }
         }
         r
     });
     let springs = super::springs::static_forces(&setup.springs, u, inputs);
-    supports.chain(springs).collect()
+    let links = super::links::static_forces(&setup.structure, &setup.links, u);
+    supports.chain(springs).chain(links).collect()
 }
 
 impl Simulation {

@@ -3,9 +3,12 @@
 //! off), printed, and the mode shapes written as CSV and drawn as SVG.
 use crate::args::Options;
 use georod::model::modal_subspace::lowest_modes;
+use georod::model::Assembly;
 use georod::scene::Scene;
 use georod::simulation::readouts::hertz;
+use georod::simulation::setup::MemberRole;
 use georod::simulation::Simulation;
+use nalgebra::Vector2;
 use std::fmt::Write as _;
 use std::sync::Arc;
 
@@ -13,8 +16,8 @@ use std::sync::Arc;
 pub struct ModalReport {
     /// The frequencies, printed.
     pub text: String,
-    /// `node,s,x,y`, then `u1_k,u2_k,w_k` per mode (each shape scaled so that its largest
-    /// translation is +1).
+    /// `node,s,x,y` (a frame: `member,node,s,x,y`, member by member), then `u1_k,u2_k,w_k` per
+    /// mode (each shape scaled so that its largest translation is +1).
     pub csv: String,
     /// One panel per mode: the rod in its initial state and displaced along the mode.
     pub svg: String,
@@ -27,11 +30,11 @@ pub fn modes_of_scene(file: &str, o: &Options) -> Result<ModalReport, String> {
         .values_with(o.overrides.iter().map(|(k, v)| (k.as_str(), *v)))
         .map_err(|e| e.to_string())?;
     let sim = Simulation::new(scene.clone(), values).map_err(|e| format!("{file}: {e}"))?;
-    let rod = sim.rod();
+    let structure = sim.structure();
     let u = &sim.state().u;
-    let free = rod.dofs() - rod.constrained().len();
+    let free = structure.dofs() - structure.constrained().len();
     let count = o.count.min(free);
-    let modes = lowest_modes(rod, u, count).map_err(|e| format!("{file}: {e}"))?;
+    let modes = lowest_modes(structure, u, count).map_err(|e| format!("{file}: {e}"))?;
     let mut report = format!(
         "{}: {} elements, natural frequencies of the initial state (undamped; constant loads on, \
          harmonic and input loads off)\n{:>5} {:>16} {:>16}\n",
@@ -41,17 +44,20 @@ pub fn modes_of_scene(file: &str, o: &Options) -> Result<ModalReport, String> {
         "frequency/Hz",
         "omega/(rad/s)"
     );
-    let mut csv = String::from("node,s,x,y");
+    let drawing = Drawing::of(&sim);
+    let frame = scene.frame.is_some();
+    let mut csv = String::from(if frame {
+        "member,node,s,x,y"
+    } else {
+        "node,s,x,y"
+    });
     for k in 1..=count {
         let _ = write!(csv, ",u1_{k},u2_{k},w_{k}");
     }
     csv.push('\n');
     let shapes: Vec<Vec<f64>> = modes.iter().map(|(_, shape)| scaled(shape)).collect();
-    let positions: Vec<[f64; 2]> = (0..rod.nodes())
-        .map(|i| rod.node_position(u, i).into())
-        .collect();
     let frequencies: Vec<f64> = modes.iter().map(|(lambda, _)| hertz(*lambda)).collect();
-    let svg = plot(&scene.name, &positions, &shapes, &frequencies);
+    let svg = plot(&scene.name, &drawing, &shapes, &frequencies);
     for (k, (lambda, _)) in modes.iter().enumerate() {
         let f = hertz(*lambda);
         let note = if *lambda < 0.0 {
@@ -67,17 +73,14 @@ pub fn modes_of_scene(file: &str, o: &Options) -> Result<ModalReport, String> {
             f * std::f64::consts::TAU
         );
     }
-    for i in 0..rod.nodes() {
-        let x = rod.node_position(u, i);
-        let _ = write!(csv, "{i},{:e},{:e},{:e}", rod.node_s[i], x[0], x[1]);
+    for p in &drawing.points {
+        if frame {
+            let _ = write!(csv, "{},", p.member);
+        }
+        let _ = write!(csv, "{},{:e},{:e},{:e}", p.node, p.s, p.x[0], p.x[1]);
         for shape in &shapes {
-            let _ = write!(
-                csv,
-                ",{:e},{:e},{:e}",
-                shape[3 * i],
-                shape[3 * i + 1],
-                shape[3 * i + 2]
-            );
+            let d = p.dof;
+            let _ = write!(csv, ",{:e},{:e},{:e}", shape[d], shape[d + 1], shape[d + 2]);
         }
         csv.push('\n');
     }
@@ -88,13 +91,79 @@ pub fn modes_of_scene(file: &str, o: &Options) -> Result<ModalReport, String> {
     })
 }
 
+/// A node drawn: its member's name (a frame), its index in the member, its arc length, its
+/// position in the initial state and its first dof.
+struct Point {
+    member: String,
+    node: usize,
+    s: f64,
+    x: [f64; 2],
+    dof: usize,
+}
+
+/// The nodes of every member in order, and each member's polyline (indices into `points`).
+struct Drawing {
+    points: Vec<Point>,
+    lines: Vec<Vec<usize>>,
+}
+
+impl Drawing {
+    fn of(sim: &Simulation) -> Drawing {
+        let structure = sim.structure();
+        let u = &sim.state().u;
+        let mut d = Drawing {
+            points: Vec::new(),
+            lines: Vec::new(),
+        };
+        let names: Vec<String> = match &sim.scene().frame {
+            None => vec![String::new()],
+            Some(f) => f.members.iter().map(|m| m.name.clone()).collect(),
+        };
+        for (role, name) in sim.setup().members.iter().zip(names) {
+            let mut line = Vec::new();
+            match *role {
+                MemberRole::Rod(r) => {
+                    let m = &structure.members[r];
+                    for i in 0..m.rod.nodes() {
+                        line.push(d.points.len());
+                        d.points.push(Point {
+                            member: name.clone(),
+                            node: i,
+                            s: m.rod.node_s[i],
+                            x: m.rod.node_position(&u[m.range()], i).into(),
+                            dof: m.offset + 3 * i,
+                        });
+                    }
+                }
+                MemberRole::Bar(b) => {
+                    let bar = &structure.axial[b];
+                    for (i, node) in bar.nodes.iter().enumerate() {
+                        line.push(d.points.len());
+                        let x = bar.reference[i] + Vector2::new(u[3 * node], u[3 * node + 1]);
+                        d.points.push(Point {
+                            member: name.clone(),
+                            node: i,
+                            s: i as f64 * bar.rest,
+                            x: x.into(),
+                            dof: 3 * node,
+                        });
+                    }
+                }
+            }
+            d.lines.push(line);
+        }
+        d
+    }
+}
+
 /// Width of the SVG drawing and the margin around each panel, in pixels.
 const WIDTH: f64 = 640.0;
 const MARGIN: f64 = 20.0;
 
 /// The mode shapes as SVG: per mode a panel with the rod in its initial state (grey) and
 /// displaced along the mode (blue) by a tenth of its extent, in true proportions.
-fn plot(name: &str, positions: &[[f64; 2]], shapes: &[Vec<f64>], frequencies: &[f64]) -> String {
+fn plot(name: &str, drawing: &Drawing, shapes: &[Vec<f64>], frequencies: &[f64]) -> String {
+    let positions: Vec<[f64; 2]> = drawing.points.iter().map(|p| p.x).collect();
     let (lo, hi) = positions.iter().fold(
         ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
         |(lo, hi), p| {
@@ -134,17 +203,20 @@ fn plot(name: &str, positions: &[[f64; 2]], shapes: &[Vec<f64>], frequencies: &[
             top + MARGIN,
             k + 1
         );
-        svg += &line(&mut positions.iter().copied(), top, "#999999");
-        svg += &line(
-            &mut positions.iter().enumerate().map(|(i, p)| {
-                [
-                    p[0] + amplitude * shape[3 * i],
-                    p[1] + amplitude * shape[3 * i + 1],
-                ]
-            }),
-            top,
-            "#1f77b4",
-        );
+        for members in &drawing.lines {
+            let points = members.iter().map(|&i| &drawing.points[i]);
+            svg += &line(&mut points.clone().map(|p| p.x), top, "#999999");
+            svg += &line(
+                &mut points.map(|p| {
+                    [
+                        p.x[0] + amplitude * shape[p.dof],
+                        p.x[1] + amplitude * shape[p.dof + 1],
+                    ]
+                }),
+                top,
+                "#1f77b4",
+            );
+        }
     }
     svg + "</svg>\n"
 }
