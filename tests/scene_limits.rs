@@ -196,7 +196,10 @@ fn a_scene_at_every_maximum_has_unique_value_references_inside_their_blocks() {
                 let base = 30_000 + 10_000 * field as u32;
                 base..base + 10_000
             }
-            Role::Output(OutputId::SpringForce(_)) => 1_000_000..u32::MAX,
+            Role::Output(OutputId::SpringForce(_)) => 1_000_000..1_100_000,
+            Role::Output(OutputId::SupportFrame { .. }) => 1_100_000..1_200_000,
+            Role::Output(OutputId::BarForce { .. }) => 1_200_000..1_300_000,
+            Role::Output(OutputId::LinkForce(_)) => 1_300_000..u32::MAX,
         };
         assert!(
             range.contains(&v.vr),
