@@ -59,6 +59,15 @@ impl Scene {
             return vec![elements];
         };
         let sharing = self.sharing();
+        let mut out: Vec<usize> = (frame.members.iter())
+            .map(|m| match m.kind {
+                MemberKind::Truss => 0,
+                MemberKind::Rod => m.elements.unwrap_or(0),
+            })
+            .collect();
+        if sharing.is_empty() {
+            return out; // every rod member has its own count: `elements` is not used
+        }
         let total: f64 = sharing.iter().map(|&(_, l)| l).sum();
         let fewest: Vec<usize> = (sharing.iter())
             .map(|&(m, _)| self.member_stations(m).len() - 1)
@@ -88,12 +97,6 @@ impl Scene {
             counts[j] -= 1;
             sum -= 1;
         }
-        let mut out: Vec<usize> = (frame.members.iter())
-            .map(|m| match m.kind {
-                MemberKind::Truss => 0,
-                MemberKind::Rod => m.elements.unwrap_or(0),
-            })
-            .collect();
         for (&(m, _), c) in sharing.iter().zip(counts) {
             out[m] = c;
         }

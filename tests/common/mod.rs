@@ -4,6 +4,8 @@
 //! the adapters to the scene layer used by the tests (see [`simulation`]).
 #![allow(dead_code)]
 
+pub mod linear_frame;
+
 use georod::model::loads::{LoadShape, LoadTime};
 use georod::model::rod::{U1, U2};
 use georod::model::{LoadSet, ReferenceCurve, Rod, Section};
@@ -430,4 +432,15 @@ pub fn assert_refused(what: &str, text: &str, parts: &[&str]) {
     for part in parts {
         assert!(e.contains(part), "{what}: `{e}` lacks `{part}`");
     }
+}
+
+/// The simulation of a scene given as text, with some parameters overridden by name.
+pub fn simulation_of(text: &str, overrides: &[(&str, f64)]) -> Simulation {
+    let scene = std::sync::Arc::new(
+        georod::scene::Scene::parse(text, "test.toml").unwrap_or_else(|e| panic!("{e}")),
+    );
+    let values = scene
+        .values_with(overrides.iter().copied())
+        .unwrap_or_else(|e| panic!("{e}"));
+    Simulation::new(scene, values).unwrap_or_else(|e| panic!("{e}"))
 }
