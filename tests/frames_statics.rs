@@ -112,7 +112,10 @@ fn portal_sway_follows_the_slope_deflection_stiffness() {
         // EA, GAs 1e4 times the real ones: their parts of the sway ~1e-6.
         let sway = extrapolated_sway(|n| portal(50.0, 50.0, ratio, p, n));
         let error = sway * k / p - 1.0;
-        println!("r = {r:.3}: sway {sway:.9e} m, slope deflection {:.9e} m, error {error:.2e}", p / k);
+        println!(
+            "r = {r:.3}: sway {sway:.9e} m, slope deflection {:.9e} m, error {error:.2e}",
+            p / k
+        );
         // The extrapolation's residual (3e-6) and the members' residual axial and shear
         // flexibility (1e-6).
         assert!(error.abs() < 2e-5, "r = {r}: {error:e}");
@@ -126,8 +129,14 @@ fn portal_with_real_sections_matches_an_independent_linear_frame() {
     let (a, shear_area, ratio, p) = (5.38e-3, 2.5e-3, 2.0, 1.0);
     let g = E / (2.0 * (1.0 + NU));
     let mut frame = LinearFrame::default();
-    let (na, nb, nc, nd) = (frame.node(0.0, 0.0), frame.node(0.0, 4.0), frame.node(6.0, 4.0), frame.node(6.0, 0.0));
-    let column = |f: &mut LinearFrame, x, y| f.member(x, y, 1, E * a, g * shear_area, E * I_C, 0.0, 0.0);
+    let (na, nb, nc, nd) = (
+        frame.node(0.0, 0.0),
+        frame.node(0.0, 4.0),
+        frame.node(6.0, 4.0),
+        frame.node(6.0, 0.0),
+    );
+    let column =
+        |f: &mut LinearFrame, x, y| f.member(x, y, 1, E * a, g * shear_area, E * I_C, 0.0, 0.0);
     column(&mut frame, na, nb);
     frame.member(nb, nc, 1, E * a, g * shear_area, ratio * E * I_C, 0.0, 0.0);
     column(&mut frame, nd, nc);
@@ -137,7 +146,10 @@ fn portal_with_real_sections_matches_an_independent_linear_frame() {
     let u = frame.solve(&f);
     let sway = extrapolated_sway(|n| portal(a, shear_area, ratio, p, n));
     // The base moment balances the load exactly at every mesh (the nodes' moments are exact).
-    let base = output(&simulation_of(&portal(a, shear_area, ratio, p, 40), &[]), "a_M");
+    let base = output(
+        &simulation_of(&portal(a, shear_area, ratio, p, 40), &[]),
+        "a_M",
+    );
     // The independent frame's reaction moment at A: its row of K u (no load there).
     let k = frame.stiffness();
     let moment_a: f64 = (0..frame.dofs()).map(|j| k[(2, j)] * u[j]).sum();
@@ -148,7 +160,10 @@ fn portal_with_real_sections_matches_an_independent_linear_frame() {
     assert!((sway / u[3 * nb] - 1.0).abs() < 2e-5, "sway");
     // The frame is statically indeterminate: the moment's share depends on the stiffnesses,
     // which carry the mesh error (5e-5 at 40 elements).
-    assert!((base - moment_a).abs() < 2e-4 * moment_a.abs(), "base moment");
+    assert!(
+        (base - moment_a).abs() < 2e-4 * moment_a.abs(),
+        "base moment"
+    );
 }
 
 /// The portal's lowest natural frequencies against the independent frame on a fine mesh
@@ -159,18 +174,59 @@ fn portal_frequencies_match_an_independent_fine_mesh() {
     let rho = 7850.0;
     let g = E / (2.0 * (1.0 + NU));
     let mut frame = LinearFrame::default();
-    let (na, nb, nc, nd) = (frame.node(0.0, 0.0), frame.node(0.0, 4.0), frame.node(6.0, 4.0), frame.node(6.0, 0.0));
+    let (na, nb, nc, nd) = (
+        frame.node(0.0, 0.0),
+        frame.node(0.0, 4.0),
+        frame.node(6.0, 4.0),
+        frame.node(6.0, 0.0),
+    );
     let n = 200;
-    frame.member(na, nb, n, E * a, g * shear_area, E * I_C, rho * a, rho * I_C);
-    frame.member(nb, nc, n, E * a, g * shear_area, ratio * E * I_C, rho * a, ratio * rho * I_C);
-    frame.member(nd, nc, n, E * a, g * shear_area, E * I_C, rho * a, rho * I_C);
+    frame.member(
+        na,
+        nb,
+        n,
+        E * a,
+        g * shear_area,
+        E * I_C,
+        rho * a,
+        rho * I_C,
+    );
+    frame.member(
+        nb,
+        nc,
+        n,
+        E * a,
+        g * shear_area,
+        ratio * E * I_C,
+        rho * a,
+        ratio * rho * I_C,
+    );
+    frame.member(
+        nd,
+        nc,
+        n,
+        E * a,
+        g * shear_area,
+        E * I_C,
+        rho * a,
+        rho * I_C,
+    );
     frame.held = vec![0, 1, 2, 3 * nd, 3 * nd + 1, 3 * nd + 2];
     let reference = frame.frequencies();
-    let text = portal(a, shear_area, ratio, 0.0, 100).replacen("[[support]]", "[modes]\ncount = 4\n[[support]]", 1);
+    let text = portal(a, shear_area, ratio, 0.0, 100).replacen(
+        "[[support]]",
+        "[modes]\ncount = 4\n[[support]]",
+        1,
+    );
     let sim = simulation_of(&text, &[]);
     for k in 0..4 {
         let f = sim.frequency(k);
-        println!("mode {}: {f:.8e} Hz vs {:.8e} Hz ({:.2e})", k + 1, reference[k], f / reference[k] - 1.0);
+        println!(
+            "mode {}: {f:.8e} Hz vs {:.8e} Hz ({:.2e})",
+            k + 1,
+            reference[k],
+            f / reference[k] - 1.0
+        );
         // Both meshes' errors (second order): ~1e-5 here, up to 1e-4 in the fourth mode.
         assert!((f / reference[k] - 1.0).abs() < 3e-4, "mode {}", k + 1);
     }
@@ -410,4 +466,3 @@ quantity = "u2"
     // The tips move by ~1e-4 of the link's length: its direction turns by as much.
     assert!((force / want - 1.0).abs() < 1e-6, "{force} vs {want}");
 }
-

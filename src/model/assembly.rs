@@ -126,8 +126,9 @@ pub trait Assembly {
         _jac: Option<&mut Self::Matrix>,
     ) {
     }
-    /// What those forces dissipate over a step: `sum c (e . d)^2 / dt`.
-    fn state_damping_dissipation(&self, _u_n: &[f64], _du: &[f64], _dt: f64) -> f64 {
+    /// What those forces dissipate over a step that ended at `u` with the increment `du`:
+    /// `sum c (e . d)^2 / dt`.
+    fn state_damping_dissipation(&self, _u: &[f64], _du: &[f64], _dt: f64) -> f64 {
         0.0
     }
 

@@ -54,9 +54,11 @@ impl Analysis {
                 values.std(Std::Rho),
                 values.std(Std::Span),
             );
-            match scene.section.rectangle(values) {
-                Some((_, h)) => l * l * (12.0 * rho / (e * h * h)).sqrt(),
-                None => l * l * (rod.rod().section.rho_a / rod.rod().section.ei).sqrt(),
+            match (scene.section.rectangle(values), rod.is_single()) {
+                (Some((_, h)), true) => l * l * (12.0 * rho / (e * h * h)).sqrt(),
+                (None, true) => l * l * (rod.rod().section.rho_a / rod.rod().section.ei).sqrt(),
+                // A frame: its softest member's bending time scale (a bar's axial one).
+                (_, false) => 1.0 / rod.bending_scale().sqrt(),
             }
         };
         if !(tau.is_finite() && tau > 0.0) {

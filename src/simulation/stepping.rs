@@ -208,6 +208,11 @@ impl Simulation {
         ledger.external_work += external;
         ledger.input_work += input;
         ledger.dissipated += self.setup.structure.dissipation_rate(du) / dt;
+        if self.setup.structure.has_state_damping() {
+            // Dashpots along a current line (links), from the step's end and increment.
+            let u = &self.trial.u;
+            ledger.dissipated += self.setup.structure.state_damping_dissipation(u, du, dt);
+        }
         supports::book_reactions(
             &self.setup,
             &self.integrator,

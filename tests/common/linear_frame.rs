@@ -30,7 +30,17 @@ impl LinearFrame {
 
     /// A straight member from node `a` to node `b` cut into `n` beams (new nodes between).
     #[allow(clippy::too_many_arguments)]
-    pub fn member(&mut self, a: usize, b: usize, n: usize, ea: f64, gas: f64, ei: f64, rho_a: f64, rho_i: f64) {
+    pub fn member(
+        &mut self,
+        a: usize,
+        b: usize,
+        n: usize,
+        ea: f64,
+        gas: f64,
+        ei: f64,
+        rho_a: f64,
+        rho_i: f64,
+    ) {
         let (xa, xb) = (self.nodes[a], self.nodes[b]);
         let mut previous = a;
         for k in 1..=n {
@@ -40,7 +50,14 @@ impl LinearFrame {
                 let t = k as f64 / n as f64;
                 self.node(xa[0] + t * (xb[0] - xa[0]), xa[1] + t * (xb[1] - xa[1]))
             };
-            self.beams.push(Beam { nodes: [previous, next], ea, gas, ei, rho_a, rho_i });
+            self.beams.push(Beam {
+                nodes: [previous, next],
+                ea,
+                gas,
+                ei,
+                rho_a,
+                rho_i,
+            });
             previous = next;
         }
     }
@@ -51,7 +68,10 @@ impl LinearFrame {
 
     fn transform(&self, beam: &Beam) -> (f64, DMatrix<f64>) {
         let [a, b] = beam.nodes;
-        let (dx, dy) = (self.nodes[b][0] - self.nodes[a][0], self.nodes[b][1] - self.nodes[a][1]);
+        let (dx, dy) = (
+            self.nodes[b][0] - self.nodes[a][0],
+            self.nodes[b][1] - self.nodes[a][1],
+        );
         let l = (dx * dx + dy * dy).sqrt();
         let (c, s) = (dx / l, dy / l);
         let mut t = DMatrix::zeros(6, 6);
@@ -67,7 +87,11 @@ impl LinearFrame {
     }
 
     fn scatter(target: &mut DMatrix<f64>, beam: &Beam, k: &DMatrix<f64>) {
-        let dofs: Vec<usize> = beam.nodes.iter().flat_map(|&n| [3 * n, 3 * n + 1, 3 * n + 2]).collect();
+        let dofs: Vec<usize> = beam
+            .nodes
+            .iter()
+            .flat_map(|&n| [3 * n, 3 * n + 1, 3 * n + 2])
+            .collect();
         for (r, &i) in dofs.iter().enumerate() {
             for (c, &j) in dofs.iter().enumerate() {
                 target[(i, j)] += k[(r, c)];
@@ -114,7 +138,9 @@ impl LinearFrame {
     }
 
     fn free(&self) -> Vec<usize> {
-        (0..self.dofs()).filter(|d| !self.held.contains(d)).collect()
+        (0..self.dofs())
+            .filter(|d| !self.held.contains(d))
+            .collect()
     }
 
     /// The displacements under the nodal forces `f` (held dofs at zero).
@@ -136,9 +162,14 @@ impl LinearFrame {
         let free = self.free();
         let (k, m) = (self.stiffness(), self.lumped_mass());
         let scale: Vec<f64> = free.iter().map(|&d| 1.0 / m[d].sqrt()).collect();
-        let a = DMatrix::from_fn(free.len(), free.len(), |r, c| k[(free[r], free[c])] * scale[r] * scale[c]);
+        let a = DMatrix::from_fn(free.len(), free.len(), |r, c| {
+            k[(free[r], free[c])] * scale[r] * scale[c]
+        });
         let mut lambda: Vec<f64> = a.symmetric_eigenvalues().iter().copied().collect();
         lambda.sort_by(f64::total_cmp);
-        lambda.iter().map(|l| l.max(0.0).sqrt() / std::f64::consts::TAU).collect()
+        lambda
+            .iter()
+            .map(|l| l.max(0.0).sqrt() / std::f64::consts::TAU)
+            .collect()
     }
 }

@@ -503,8 +503,8 @@ impl Assembly for Structure {
         self.link_damping(u_n, du, dt, out, jac);
     }
 
-    fn state_damping_dissipation(&self, u_n: &[f64], du: &[f64], dt: f64) -> f64 {
-        self.link_dissipation(u_n, du, dt)
+    fn state_damping_dissipation(&self, u: &[f64], du: &[f64], dt: f64) -> f64 {
+        self.link_dissipation(u, du, dt)
     }
 
     fn strain_energy(&self, u: &[f64]) -> f64 {
@@ -604,6 +604,40 @@ impl Structure {
 
 /// Links' dashpots along their current line (see [`Assembly::add_state_damping`]).
 impl Structure {
+    /// Linear momentum `sum M v` over the translations (members, bars, joint masses).
+    pub fn linear_momentum(&self, v: &[f64]) -> nalgebra::Vector2<f64> {
+        let mut p = vec![0.0; v.len()];
+        self.add_mass_times(v, &mut p, 1.0);
+        // Folded: the joints' rows hold their members' ends' share.
+        (0..self.nodes())
+            .map(|i| Vector2::new(p[3 * i], p[3 * i + 1]))
+            .sum()
+    }
+
+    /// Angular momentum about the origin, `sum x_i x (M v)_i + (M v)_w`, `x_i` the current
+    /// positions of the nodes (the folded product's rows sit at the joints and the members'
+    /// own nodes).
+    pub fn angular_momentum(&self, u: &[f64], v: &[f64]) -> f64 {
+        if self.is_single() {
+            return self.rod().angular_momentum(u, v);
+        }
+        let mut p = vec![0.0; v.len()];
+        self.add_mass_times(v, &mut p, 1.0);
+        let mut total = 0.0;
+        for (j, x0) in self.joints.iter().enumerate() {
+            let x = x0 + Vector2::new(u[3 * j], u[3 * j + 1]);
+            total += x[0] * p[3 * j + 1] - x[1] * p[3 * j] + p[3 * j + 2];
+        }
+        for m in &self.members {
+            for i in 0..m.rod.nodes() {
+                let d = m.offset + 3 * i;
+                let x = m.rod.node_position(&u[m.range()], i);
+                total += x[0] * p[d + 1] - x[1] * p[d] + p[d + 2];
+            }
+        }
+        total
+    }
+
     pub(super) fn link_damping(
         &self,
         u_n: &[f64],
@@ -613,7 +647,7 @@ impl Structure {
         mut jac: Option<&mut StructureMatrix>,
     ) {
         for a in self.dashpots() {
-            let (stretch, e) = a.stretch_increment(u_n, du);
+            let (stretch, e) = a.stretch_increment(u_n, du, 0.5);
             a.add_end_force(a.c * stretch / dt * e, out, 1.0);
             if let Some(m) = jac.as_deref_mut() {
                 let k = (a.c / dt) * (e * e.transpose());
@@ -622,10 +656,10 @@ impl Structure {
         }
     }
 
-    pub(super) fn link_dissipation(&self, u_n: &[f64], du: &[f64], dt: f64) -> f64 {
+    pub(super) fn link_dissipation(&self, u: &[f64], du: &[f64], dt: f64) -> f64 {
         (self.dashpots())
             .map(|a| {
-                let (stretch, _) = a.stretch_increment(u_n, du);
+                let (stretch, _) = a.stretch_increment(u, du, -0.5);
                 a.c * stretch * stretch / dt
             })
             .sum()

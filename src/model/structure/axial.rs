@@ -157,11 +157,12 @@ impl Axial {
     }
 
     /// The rate of its length times the step: `e . (du_b - du_a)` with `e` the direction at
-    /// the midpoint `u_n + du / 2`, and that direction (for its dashpot over a step).
-    pub fn stretch_increment(&self, u_n: &[f64], du: &[f64]) -> (f64, Vector2<f64>) {
+    /// the step's midpoint `u + towards du` (from the start `u_n`: `towards = 1/2`; from the
+    /// end: `-1/2`), and that direction (for its dashpot over a step).
+    pub fn stretch_increment(&self, u: &[f64], du: &[f64], towards: f64) -> (f64, Vector2<f64>) {
         let [a, b] = self.nodes;
         let d = Vector2::new(du[3 * b] - du[3 * a], du[3 * b + 1] - du[3 * a + 1]);
-        let r = self.chord(u_n) + 0.5 * d;
+        let r = self.chord(u) + towards * d;
         let e = r / r.norm();
         (e.dot(&d), e)
     }
