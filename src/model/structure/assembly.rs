@@ -1,7 +1,7 @@
 //! The structure as the integrators see it ([`Assembly`]): a single member hands every call to
 //! its rod (the same code as a lone rod's); a frame runs each member's rod on its slice of the
 //! vectors, adds the bars, links and joint terms, and folds the slaves' rows into their joints'.
-use super::matrix::{add_axial_block, add_axial_pattern, MemberSink, StructureMatrix};
+use super::matrix::StructureMatrix;
 use super::{Structure, StructureTangents};
 use crate::model::assembly::Assembly;
 use crate::model::bands::Scaled;
@@ -11,6 +11,11 @@ use crate::solver::SystemMatrix;
 use nalgebra::{Matrix2, Vector2};
 
 impl Structure {
+    /// A frame's graph (panics for a single member).
+    fn graph(&self) -> &super::graph::Graph {
+        self.graph.as_ref().expect("a frame")
+    }
+
     /// The matrix of a frame (panics for a single member).
     fn graph_matrix(jac: &mut StructureMatrix) -> &mut SparseBlocks {
         match jac {
@@ -71,8 +76,9 @@ impl Structure {
         for &(d, m) in &self.nodal.masses {
             jac.add_diagonal(d, scale * m);
         }
-        for bar in &self.axial {
-            add_axial_pattern(jac, bar.nodes, bar.mass, self.lumped, scale);
+        let g = self.graph();
+        for (a, bar) in self.axial.iter().enumerate() {
+            g.add_axial_pattern(jac, a, bar.mass, self.lumped, scale);
         }
     }
 
@@ -80,15 +86,16 @@ impl Structure {
         for &(d, c) in &self.nodal.dashpots {
             jac.add_diagonal(d, scale * c);
         }
-        for bar in &self.axial {
-            add_axial_pattern(jac, bar.nodes, bar.damping, self.lumped, scale);
+        let g = self.graph();
+        for (a, bar) in self.axial.iter().enumerate() {
+            g.add_axial_pattern(jac, a, bar.damping, self.lumped, scale);
         }
         if let Some((beta, tangents)) = &self.rayleigh {
             for &(d, k) in &self.nodal.springs {
                 jac.add_diagonal(d, scale * beta * k);
             }
-            for (bar, k) in self.axial.iter().zip(tangents) {
-                add_axial_block(jac, bar.nodes, k, scale * beta);
+            for (a, k) in tangents.iter().enumerate() {
+                g.add_axial_block(jac, a, k, scale * beta);
             }
         }
     }
@@ -106,7 +113,7 @@ impl Structure {
             let (force, k) = a.force_and_tangent(u);
             a.add_end_force(force, f, 1.0);
             if let Some((m, scale)) = jac.as_mut() {
-                add_axial_block(m, a.nodes, &k, *scale);
+                self.graph().add_axial_block(m, i, &k, *scale);
             }
             if let Some(kept) = kept.as_mut() {
                 kept[i] = k;
@@ -225,10 +232,7 @@ impl Assembly for Structure {
         let g = self.graph.as_ref().expect("a frame");
         let matrix = Self::graph_matrix(jac);
         self.for_members(u, f, true, |i, rod, u, f| {
-            let mut sink = MemberSink {
-                matrix,
-                route: g.route(i),
-            };
+            let mut sink = g.member(matrix, i);
             rod.internal_force_and_tangent(u, f, &mut sink, scale);
         });
         self.add_extra_force(u, f, Some((matrix, scale)), None);
@@ -256,10 +260,7 @@ impl Assembly for Structure {
         let matrix = Self::graph_matrix(jac);
         let members = &mut kept.members;
         self.for_members(u, f, true, |i, rod, u, f| {
-            let mut sink = MemberSink {
-                matrix,
-                route: g.route(i),
-            };
+            let mut sink = g.member(matrix, i);
             rod.internal_force_and_tangent_kept(u, f, &mut sink, scale, &mut members[i]);
         });
         self.add_extra_force(u, f, Some((matrix, scale)), Some(&mut kept.axial));
@@ -316,17 +317,14 @@ impl Assembly for Structure {
         let g = self.graph.as_ref().expect("a frame");
         let matrix = Self::graph_matrix(jac);
         for (i, m) in self.members.iter().enumerate() {
-            let mut sink = MemberSink {
-                matrix,
-                route: g.route(i),
-            };
+            let mut sink = g.member(matrix, i);
             for (e, ke) in kept.members[i].iter().enumerate() {
                 crate::solver::PairSink::add_pair(&mut sink, e, ke, scale);
             }
             m.rod.add_attached_stiffness(&mut sink, scale);
         }
-        for (a, k) in self.axial.iter().zip(&kept.axial) {
-            add_axial_block(matrix, a.nodes, k, scale);
+        for (a, k) in kept.axial.iter().enumerate() {
+            g.add_axial_block(matrix, a, k, scale);
         }
         for &(d, k) in &self.nodal.springs {
             matrix.add_diagonal(d, scale * k);
@@ -369,10 +367,7 @@ impl Assembly for Structure {
         f[..3 * self.joints.len()].fill(0.0);
         for (i, m) in self.members.iter().enumerate() {
             let r = m.range();
-            let mut sink = MemberSink {
-                matrix,
-                route: g.route(i),
-            };
+            let mut sink = g.member(matrix, i);
             m.rod.discrete_gradient_and_tangent(
                 &ua[r.clone()],
                 &ub[r.clone()],
@@ -382,9 +377,9 @@ impl Assembly for Structure {
             );
         }
         let mid: Vec<f64> = ua.iter().zip(ub).map(|(a, b)| 0.5 * (a + b)).collect();
-        for a in &self.axial {
+        for (i, a) in self.axial.iter().enumerate() {
             a.add_end_force(a.discrete_gradient(ua, ub), f, 1.0);
-            add_axial_block(matrix, a.nodes, &a.force_and_tangent(&mid).1, scale);
+            g.add_axial_block(matrix, i, &a.force_and_tangent(&mid).1, scale);
         }
         self.add_spring_force(ua, f, 0.5);
         self.add_spring_force(ub, f, 0.5);
@@ -402,10 +397,7 @@ impl Assembly for Structure {
         let matrix = Self::graph_matrix(jac);
         for (i, m) in self.members.iter().enumerate() {
             m.rod.add_mass(
-                &mut MemberSink {
-                    matrix,
-                    route: g.route(i),
-                },
+                &mut g.member(matrix, i),
                 scale,
             );
         }
@@ -420,10 +412,7 @@ impl Assembly for Structure {
         let matrix = Self::graph_matrix(jac);
         for (i, m) in self.members.iter().enumerate() {
             m.rod.add_damping(
-                &mut MemberSink {
-                    matrix,
-                    route: g.route(i),
-                },
+                &mut g.member(matrix, i),
                 scale,
             );
         }
@@ -646,12 +635,12 @@ impl Structure {
         out: &mut [f64],
         mut jac: Option<&mut StructureMatrix>,
     ) {
-        for a in self.dashpots() {
+        for (i, a) in self.axial.iter().enumerate().filter(|(_, a)| a.c > 0.0) {
             let (stretch, e) = a.stretch_increment(u_n, du, 0.5);
             a.add_end_force(a.c * stretch / dt * e, out, 1.0);
             if let Some(m) = jac.as_deref_mut() {
                 let k = (a.c / dt) * (e * e.transpose());
-                add_axial_block(Self::graph_matrix(m), a.nodes, &k, 1.0);
+                self.graph().add_axial_block(Self::graph_matrix(m), i, &k, 1.0);
             }
         }
     }

@@ -19,6 +19,7 @@
 //! coupled at the joints; their elimination follows the chains (see `crate::solver::sparse_blocks`).
 mod assembly;
 mod axial;
+mod graph;
 mod matrix;
 mod points;
 mod topology;
@@ -94,7 +95,7 @@ pub struct Structure {
     projected: Vec<(usize, [f64; 2])>,
     /// The frame's block-sparse pattern and where each element assembles (`None`: one member,
     /// a block-tridiagonal matrix).
-    graph: Option<matrix::Graph>,
+    graph: Option<graph::Graph>,
     /// Lumped mass and damping (of the members and bars).
     pub lumped: bool,
     /// Stiffness-proportional Rayleigh damping of the bars and joint springs: `beta` and the

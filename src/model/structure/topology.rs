@@ -1,6 +1,6 @@
 //! Building a structure: the joints, the members between them with their ties, bars and links,
 //! and the lists of constrained dofs that follow from the supports.
-use super::matrix::Graph;
+use super::graph::Graph;
 use super::{Axial, Member, MemberEnd, NodalTerms, Structure};
 use crate::model::rod::{Rod, ROTATION, U1, U2};
 use nalgebra::Vector2;

@@ -39,6 +39,13 @@ impl SparseBlocks {
         self.blocks[slot][(row_dof % 3, col_dof % 3)] += value;
     }
 
+    /// Adds `value` to entry `(r, c)` of the block at `slot`: an entry's assembly with its
+    /// slot looked up once, at setup ([`BlockPattern::slot`](super::BlockPattern::slot)).
+    pub fn add_slot_entry(&mut self, slot: usize, r: usize, c: usize, value: f64) {
+        debug_assert!(!self.factored);
+        self.blocks[slot][(r, c)] += value;
+    }
+
     /// Adds `value` to the diagonal entry of dof `dof` (a point mass, spring or dashpot).
     pub fn add_diagonal(&mut self, dof: usize, value: f64) {
         debug_assert!(!self.factored);
