@@ -175,3 +175,4 @@ fn the_cut_rod_steps_like_the_rod() {
         }
     }
 }
+

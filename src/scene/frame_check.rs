@@ -15,6 +15,19 @@ type Refusal = (String, String);
 /// Every check of a frame scene, with the key and message of the first that fails.
 pub(super) fn check(scene: &Scene, frame: &Frame) -> Result<(), Refusal> {
     places(scene, frame)?;
+    let samples = scene.shape_samples();
+    if samples > crate::scene::variables::MAX_SHAPE_POINTS {
+        return Err((
+            "shape.points".to_string(),
+            format!(
+                "{} points on each of {} members are {samples} shape samples: a frame has at \
+                 most {} (lower points)",
+                scene.shape_points,
+                frame.members.len(),
+                crate::scene::variables::MAX_SHAPE_POINTS
+            ),
+        ));
+    }
     rotations(scene, frame)?;
     for (i, m) in frame.members.iter().enumerate() {
         if let Some(n) = m.elements {

@@ -60,9 +60,18 @@ impl MemberRoute {
         }
     }
 
-    /// Whether element `e` touches an end node (its rows go to masters one by one).
+    /// Whether element `e` must go to its masters entry by entry: it touches an end node
+    /// whose three dofs are not one node's (a hinged end: its translations are the joint's,
+    /// its rotation its own). A rigid end's node is wholly its joint's: the element then
+    /// assembles by blocks at the joint's node.
     fn is_routed(&self, e: usize) -> bool {
-        e == 0 || 3 * (e + 2) >= self.dofs
+        let split = |dofs: &[usize; 3]| dofs[1] != dofs[0] + 1 || dofs[2] != dofs[0] + 2;
+        (e == 0 && split(&self.start)) || (3 * (e + 2) >= self.dofs && split(&self.end))
+    }
+
+    /// The node of the member's local node `i` in the matrix (a rigid end's: its joint's).
+    fn node(&self, i: usize) -> usize {
+        self.global(3 * i) / 3
     }
 }
 
@@ -108,7 +117,6 @@ impl Graph {
             None => BlockPattern::new(nodes, &edges),
         });
         for (route, m) in routes.iter_mut().zip(&s.members) {
-            let first = m.offset / 3;
             let elements = m.rod.elements.len();
             route.routed = (0..elements)
                 .filter(|&e| route.is_routed(e))
@@ -125,7 +133,7 @@ impl Graph {
                 .map(|e| match route.is_routed(e) {
                     true => [usize::MAX; 4],
                     false => {
-                        let (a, b) = (first + e, first + e + 1);
+                        let (a, b) = (route.node(e), route.node(e + 1));
                         (pattern.pair_slots(a, b)).expect("an element's blocks")
                     }
                 })
