@@ -33,7 +33,13 @@ fn rod(n: usize) -> String {
 
 /// Four members of 5 m: A-B-M-C-D (open, a portal whose beam is cut at M) or a ring.
 fn frame(n: usize, closed: bool) -> String {
-    let joints = [("A", 0.0, 0.0), ("B", 0.0, 5.0), ("M", 5.0, 5.0), ("C", 10.0, 5.0), ("D", 10.0, 0.0)];
+    let joints = [
+        ("A", 0.0, 0.0),
+        ("B", 0.0, 5.0),
+        ("M", 5.0, 5.0),
+        ("C", 10.0, 5.0),
+        ("D", 10.0, 0.0),
+    ];
     let mut s = format!("name = \"Frame\"\n{}", material(n));
     let used = if closed { 4 } else { 5 };
     for (name, x, y) in &joints[..used] {
@@ -49,7 +55,9 @@ fn frame(n: usize, closed: bool) -> String {
     }
     let supports: &[&str] = if closed { &["A"] } else { &["A", "D"] };
     for j in supports {
-        s += &format!("[[support]]\nname = \"s{j}\"\njoint = \"{j}\"\nfix = [\"u1\", \"u2\", \"w\"]\n");
+        s += &format!(
+            "[[support]]\nname = \"s{j}\"\njoint = \"{j}\"\nfix = [\"u1\", \"u2\", \"w\"]\n"
+        );
     }
     s + "[[load]]\nname = \"p\"\nkind = \"point\"\njoint = \"B\"\ndirection = \"e1\"\ntime = \"harmonic\"\n"
 }
@@ -75,7 +83,9 @@ fn measure(text: &str) -> f64 {
 }
 
 fn main() {
-    println!("| elements | rod us / step | open 4-member frame | ratio | closed 4-member ring | ratio |");
+    println!(
+        "| elements | rod us / step | open 4-member frame | ratio | closed 4-member ring | ratio |"
+    );
     println!("|---:|---:|---:|---:|---:|---:|");
     for n in [40, 400, 4000] {
         let scenes = [rod(n), frame(n, false), frame(n, true)];

@@ -175,4 +175,3 @@ fn the_cut_rod_steps_like_the_rod() {
         }
     }
 }
-

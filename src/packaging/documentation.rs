@@ -231,6 +231,26 @@ print(result["time"][-1], result[{shown}][-1])"#,
              linearly from where it was.</p>"
         );
     }
+    if let (Some(frame), true) = (&scene.frame, scene.shape_points > 0) {
+        let ranges: Vec<String> = (frame.members.iter().enumerate())
+            .map(|(m, member)| {
+                let p = scene.shape_points;
+                format!(
+                    "{}..{} member <code>{}</code>",
+                    m * p + 1,
+                    (m + 1) * p,
+                    html(&member.name)
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            h,
+            "<p>This is a frame: the shape samples run member by member, {} points along each \
+             from its <code>from</code> joint: {}.</p>",
+            scene.shape_points,
+            ranges.join(", ")
+        );
+    }
     if scene.shape_points > 0 {
         let _ = writeln!(
             h,

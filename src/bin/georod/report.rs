@@ -123,10 +123,12 @@ pub fn listing(scene: &Scene, sim: &Simulation) -> String {
         } else {
             v.name.clone()
         };
-        let description = if run > 1 {
-            array_description(v, run)
-        } else {
-            v.description.clone()
+        let description = match (run > 1, &scene.frame) {
+            (true, Some(frame)) if v.name.starts_with("shape_") => {
+                frame_samples(v, frame, scene.shape_points)
+            }
+            (true, _) => array_description(v, run),
+            (false, _) => v.description.clone(),
         };
         let _ = writeln!(out, "  {:9} {name:24} {description}", kind(v));
         i += run;
@@ -168,6 +170,18 @@ fn kind(v: &Variable) -> &'static str {
         (_, Role::Output(_)) => "output",
         _ => "",
     }
+}
+
+/// A frame's shape samples: which indices sample which member.
+fn frame_samples(first: &Variable, frame: &georod::scene::frame::Frame, points: usize) -> String {
+    let what = first.description.split(" of member").next().unwrap_or("");
+    let ranges: Vec<String> = (frame.members.iter().enumerate())
+        .map(|(m, member)| format!("[{}..{}] {}", m * points + 1, (m + 1) * points, member.name))
+        .collect();
+    format!(
+        "{what}, at {points} equally spaced points along each member from its `from` joint: {}",
+        ranges.join(", ")
+    )
 }
 
 /// The description of an array's first entry, for the whole array: shape samples by the points

@@ -396,10 +396,7 @@ impl Assembly for Structure {
         let g = self.graph.as_ref().expect("a frame");
         let matrix = Self::graph_matrix(jac);
         for (i, m) in self.members.iter().enumerate() {
-            m.rod.add_mass(
-                &mut g.member(matrix, i),
-                scale,
-            );
+            m.rod.add_mass(&mut g.member(matrix, i), scale);
         }
         self.add_extra_mass(matrix, scale);
     }
@@ -411,10 +408,7 @@ impl Assembly for Structure {
         let g = self.graph.as_ref().expect("a frame");
         let matrix = Self::graph_matrix(jac);
         for (i, m) in self.members.iter().enumerate() {
-            m.rod.add_damping(
-                &mut g.member(matrix, i),
-                scale,
-            );
+            m.rod.add_damping(&mut g.member(matrix, i), scale);
         }
         self.add_extra_damping(matrix, scale);
     }
@@ -640,7 +634,8 @@ impl Structure {
             a.add_end_force(a.c * stretch / dt * e, out, 1.0);
             if let Some(m) = jac.as_deref_mut() {
                 let k = (a.c / dt) * (e * e.transpose());
-                self.graph().add_axial_block(Self::graph_matrix(m), i, &k, 1.0);
+                self.graph()
+                    .add_axial_block(Self::graph_matrix(m), i, &k, 1.0);
             }
         }
     }

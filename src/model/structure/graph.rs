@@ -172,7 +172,13 @@ impl Graph {
 
     /// Adds `scale * [[K, -K], [-K, K]]` of a 2x2 block `K` on axial element `a`'s
     /// translations.
-    pub(super) fn add_axial_block(&self, m: &mut SparseBlocks, a: usize, k: &Matrix2<f64>, scale: f64) {
+    pub(super) fn add_axial_block(
+        &self,
+        m: &mut SparseBlocks,
+        a: usize,
+        k: &Matrix2<f64>,
+        scale: f64,
+    ) {
         for (i, entry) in self.axial[a].iter().enumerate() {
             let (r, c) = (i / 4, i % 4);
             let sign = if (r < 2) == (c < 2) { 1.0 } else { -1.0 };
@@ -185,7 +191,14 @@ impl Graph {
 
     /// Adds `scale * c [[2, 1], [1, 2]]` (lumped: `3 c` on the diagonal) on both translations
     /// of axial element `a` (a bar's consistent mass or damping).
-    pub(super) fn add_axial_pattern(&self, m: &mut SparseBlocks, a: usize, c: f64, lumped: bool, scale: f64) {
+    pub(super) fn add_axial_pattern(
+        &self,
+        m: &mut SparseBlocks,
+        a: usize,
+        c: f64,
+        lumped: bool,
+        scale: f64,
+    ) {
         if c == 0.0 {
             return;
         }
@@ -244,7 +257,11 @@ fn twisted(nodes: usize, edges: &[(usize, usize)]) -> Option<Vec<usize>> {
         return None; // more than one path or loop
     }
     let mut order: Vec<usize> = (0..nodes).filter(|&i| adjacent[i].is_empty()).collect();
-    order.extend(BlockPattern::twisted_order(walk.len()).into_iter().map(|k| walk[k]));
+    order.extend(
+        BlockPattern::twisted_order(walk.len())
+            .into_iter()
+            .map(|k| walk[k]),
+    );
     order.extend(last);
     Some(order)
 }
@@ -257,7 +274,12 @@ pub(super) struct MemberSink<'a> {
 
 impl MemberSink<'_> {
     /// Adds the 6x6 `[[aa, ab], [ab^T, bb]]` of element `e` entry by entry at the masters.
-    fn scatter(&mut self, e: usize, (aa, ab, bb): (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>), scale: f64) {
+    fn scatter(
+        &mut self,
+        e: usize,
+        (aa, ab, bb): (Matrix3<f64>, Matrix3<f64>, Matrix3<f64>),
+        scale: f64,
+    ) {
         let block = |r: usize, c: usize| match (r / 3, c / 3) {
             (0, 0) => aa[(r, c)],
             (0, 1) => ab[(r, c - 3)],
@@ -283,7 +305,8 @@ impl PairSink for MemberSink<'_> {
             self.scatter(e, blocks, scale);
         } else {
             let (aa, ab, bb) = blocks;
-            self.matrix.add_pair_slots(self.route.pairs[e], &aa, &ab, &bb, scale);
+            self.matrix
+                .add_pair_slots(self.route.pairs[e], &aa, &ab, &bb, scale);
         }
     }
 
