@@ -41,6 +41,8 @@ pub struct Lyapunov {
     log_growth: Vec<f64>,
     /// Time covered by the counted sub-steps.
     counted_time: f64,
+    /// The dofs the norm leaves out (see [`Assembly::duplicates`]).
+    duplicates: Vec<usize>,
 }
 
 /// A deterministic pseudo-random direction over the free dofs (splitmix64), unit in the norm
@@ -60,17 +62,30 @@ pub fn seeded_direction<A: Assembly>(rod: &A, seed: u64, tau: f64) -> (Vec<f64>,
     let mut dv: Vec<f64> = (0..n).map(|_| next() / tau).collect();
     rod.zero_constrained(&mut du);
     rod.zero_constrained(&mut dv);
-    let norm = weighted_norm(&du, &dv, tau);
+    rod.make_consistent(&mut du);
+    rod.make_consistent(&mut dv);
+    let norm = weighted_norm(&du, &dv, tau, rod.duplicates());
     du.iter_mut().chain(dv.iter_mut()).for_each(|x| *x /= norm);
     (du, dv)
 }
 
-fn weighted_norm(du: &[f64], dv: &[f64], tau: f64) -> f64 {
-    weighted_dot(du, dv, du, dv, tau).sqrt()
+fn weighted_norm(du: &[f64], dv: &[f64], tau: f64, duplicates: &[usize]) -> f64 {
+    weighted_dot((du, dv), (du, dv), tau, duplicates).sqrt()
 }
 
-fn weighted_dot(au: &[f64], av: &[f64], bu: &[f64], bv: &[f64], tau: f64) -> f64 {
-    dot(au, bu) + tau * tau * dot(av, bv)
+/// `|z|^2 = du . du + tau^2 dv . dv`, each physical dof once: the `duplicates` (a frame member's
+/// ends, which repeat their joints) left out.
+fn weighted_dot(
+    (au, av): (&[f64], &[f64]),
+    (bu, bv): (&[f64], &[f64]),
+    tau: f64,
+    duplicates: &[usize],
+) -> f64 {
+    let mut d = dot(au, bu) + tau * tau * dot(av, bv);
+    for &i in duplicates {
+        d -= au[i] * bu[i] + tau * tau * (av[i] * bv[i]);
+    }
+    d
 }
 
 impl Lyapunov {
@@ -86,6 +101,7 @@ impl Lyapunov {
             count_from,
             log_growth: vec![0.0; k],
             counted_time: 0.0,
+            duplicates: rod.duplicates().to_vec(),
         };
         for j in 0..k {
             let (du, dv) = seeded_direction(rod, j as u64 + 1, tau);
@@ -176,11 +192,11 @@ impl Lyapunov {
             let (u, v) = (&mut rest_u[..n], &mut rest_v[..n]);
             for i in 0..j {
                 let (qu, qv) = (&done_u[i * n..(i + 1) * n], &done_v[i * n..(i + 1) * n]);
-                let p = weighted_dot(u, v, qu, qv, self.tau);
+                let p = weighted_dot((u, v), (qu, qv), self.tau, &self.duplicates);
                 u.iter_mut().zip(qu).for_each(|(x, q)| *x -= p * q);
                 v.iter_mut().zip(qv).for_each(|(x, q)| *x -= p * q);
             }
-            let r = weighted_norm(u, v, self.tau);
+            let r = weighted_norm(u, v, self.tau, &self.duplicates);
             let inverse = 1.0 / r;
             u.iter_mut().chain(v.iter_mut()).for_each(|x| *x *= inverse);
             if book {

@@ -30,6 +30,18 @@ pub trait Assembly {
     fn constrained(&self) -> &[usize];
     /// Sets the held entries of a vector to zero (a correction, a right-hand side, a velocity).
     fn zero_constrained(&self, x: &mut [f64]);
+    /// Makes a vector of displacements or velocities consistent: every dof that stands for
+    /// another (a frame member's end, tied to its joint) takes its value. A vector made any
+    /// other way than by the model's own solves (a seeded direction) must be, or the step
+    /// carries the difference along forever.
+    fn make_consistent(&self, _x: &mut [f64]) {}
+
+    /// The dofs that repeat another (a frame member's end, tied to its joint): norms of state
+    /// vectors count each physical dof once by leaving these out.
+    fn duplicates(&self) -> &[usize] {
+        &[]
+    }
+
     /// Removes the constrained dofs from a matrix.
     fn constrain(&self, jac: &mut Self::Matrix) {
         jac.constrain(self.constrained());

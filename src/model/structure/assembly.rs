@@ -203,6 +203,14 @@ impl Assembly for Structure {
         self.zero_held(x);
     }
 
+    fn make_consistent(&self, x: &mut [f64]) {
+        self.expand(x);
+    }
+
+    fn duplicates(&self) -> &[usize] {
+        &self.slaves
+    }
+
     fn constrain(&self, jac: &mut StructureMatrix) {
         jac.constrain(&self.eliminated);
         for &(node, n) in &self.directions {

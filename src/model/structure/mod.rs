@@ -79,8 +79,9 @@ pub struct Structure {
     pub axial: Vec<Axial>,
     pub nodal: NodalTerms,
     dofs: usize,
-    /// `(slave, master)` dof pairs.
+    /// `(slave, master)` dof pairs, and the slaves alone.
     ties: Vec<(usize, usize)>,
+    slaves: Vec<usize>,
     /// Held by a support (fixed or prescribed), per dof.
     held: Vec<bool>,
     /// Joint rotations that no rigid member end reaches.
@@ -120,6 +121,7 @@ impl Structure {
             nodal: NodalTerms::default(),
             dofs,
             ties: Vec::new(),
+            slaves: Vec::new(),
             held: vec![false; dofs],
             dead: Vec::new(),
             directions: Vec::new(),

@@ -54,6 +54,7 @@ impl Structure {
             axial,
             nodal,
             dofs,
+            slaves: ties.iter().map(|&(s, _)| s).collect(),
             ties,
             held: vec![false; dofs],
             dead,
