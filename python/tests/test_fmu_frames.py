@@ -52,8 +52,8 @@ def test_truss_bar_forces_and_an_inclined_roller_follow_statics(
     # The roller's normal at 30 degrees: the vertical reactions P/2 each; the roller pushes along
     # its normal (-sin 30, cos 30) with R = P / (2 cos 30), the pin takes the horizontal rest.
     roller = p / (2.0 * math.cos(math.radians(30.0)))
-    # Horizontal equilibrium at R: the bottom bar carries P / 3 plus the roller's push along -e1.
-    bottom = p / 3.0 + roller * math.sin(math.radians(30.0))
+    # Horizontal equilibrium at R: the bottom bar's P / 3 less the roller's push along -e1.
+    bottom = p / 3.0 - roller * math.sin(math.radians(30.0))
     checks = [
         ("LT", lt, -p / (2.0 * sin)),
         ("LT end", lt_end, -p / (2.0 * sin)),
@@ -81,7 +81,8 @@ def test_a_load_crossing_a_path_of_members_follows_the_lever_rule(
     fmus: Callable[[str], FmuInfo],
 ) -> None:
     """1 kN at 1 m/s over 10 m, entering at 0.5 s: the roller carries P x / L; the girder's
-    dynamic response (damped, first period 0.02 s) adds 1e-3 of P at most."""
+    dynamic response (5 % mass-proportional damping, first period 0.095 s) adds 4e-4 of P (the
+    tolerance 1e-3 of P)."""
     info = fmus("DeckPath")
     slave = instantiate(info)
     try:
@@ -101,10 +102,12 @@ def test_a_load_crossing_a_path_of_members_follows_the_lever_rule(
 
 def test_a_mechanism_frame_is_refused_and_nothing_is_written(tmp_path: Path) -> None:
     ensure_georod()
+    # Pinned feet and a beam hinged at both corners: the frame sways freely.
     scene = (
         (SCENE_DIR / "PortalSway.toml")
         .read_text()
         .replace('fix = ["u1", "u2", "w"]', 'fix = ["u1", "u2"]')
+        .replace('name = "beam"', 'name = "beam"\nhinges = ["start", "end"]')
     )
     bad = tmp_path / "Mechanism.toml"
     bad.write_text(scene)

@@ -6,9 +6,6 @@ use super::state_data::StateData;
 use crate::scene::{ParamValues, Scene};
 use crate::simulation::Snapshot;
 
-/// Degrees of freedom per node in the snapshot's vectors (u1, u2, w; `model::rod::Rod::dofs`).
-const DOFS_PER_NODE: usize = 3;
-
 /// The scene's parameters from the serialized list: each of the scene's parameters exactly once,
 /// in order, each within its range.
 pub fn params(scene: &Scene, list: &[(String, f64)]) -> Result<ParamValues, String> {
@@ -87,7 +84,7 @@ fn snapshot(s: &Snapshot, scene: &Scene, elements: usize) -> Result<(), String> 
             s.scene, s.elements, scene.name
         ));
     }
-    let dofs = DOFS_PER_NODE * (elements + 1);
+    let dofs = scene.dofs(elements);
     if s.displacements.len() != dofs || s.velocities.len() != dofs {
         return Err(format!(
             "snapshot vectors of length {} and {}, {elements} elements need {dofs}",
@@ -98,12 +95,8 @@ fn snapshot(s: &Snapshot, scene: &Scene, elements: usize) -> Result<(), String> 
     let sizes = [
         ("parameter values", s.values.len(), scene.params.len()),
         ("inputs", s.inputs.len(), scene.inputs.len()),
-        // One per support, then one per spring (its force).
-        (
-            "reactions",
-            s.reactions.len(),
-            scene.supports.len() + scene.springs.len(),
-        ),
+        // One per support, then one per spring (its force), then per link.
+        ("reactions", s.reactions.len(), scene.reaction_slots()),
     ];
     for (what, got, want) in sizes {
         if got != want {

@@ -51,6 +51,29 @@ impl Scene {
             .max(1)
     }
 
+    /// The length of the model's dof vectors with `elements` elements: a rod's nodes, or a
+    /// frame's joints and its rod members' own nodes (ends included).
+    pub fn dofs(&self, elements: usize) -> usize {
+        match &self.frame {
+            None => 3 * (elements + 1),
+            Some(f) => {
+                let counts = self.member_elements(elements);
+                let members: usize = (f.members.iter().zip(&counts))
+                    .filter(|(m, _)| m.kind == MemberKind::Rod)
+                    .map(|(_, &n)| 3 * (n + 1))
+                    .sum();
+                3 * f.joints.len() + members
+            }
+        }
+    }
+
+    /// How many reaction-like outputs a simulation books (a state carries them): one per
+    /// support, then per spring, then per link.
+    pub fn reaction_slots(&self) -> usize {
+        let links = self.frame.as_ref().map_or(0, |f| f.links.len());
+        self.supports.len() + self.springs.len() + links
+    }
+
     /// The element count of each member for `elements` (a truss member: 0, it is one bar):
     /// its own, or its share of `elements` (proportional to its length, largest remainders,
     /// at least its segments). `elements` must pass [`Scene::check_mesh`].

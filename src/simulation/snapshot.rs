@@ -178,9 +178,23 @@ impl Simulation {
         {
             return bad("non-finite values".to_string());
         }
+        // A frame member's end repeats its joint: a state where they differ is no state of it.
+        let ties = self.setup.structure.ties();
+        if (ties.iter()).any(|&(a, b)| {
+            s.displacements[a] != s.displacements[b] || s.velocities[a] != s.velocities[b]
+        }) {
+            return bad("a member's end differs from its joint".to_string());
+        }
         self.analysis
             .check(s.lyapunov.as_ref())
             .map_err(SimError::BadSnapshot)?;
+        if let Some(l) = &s.lyapunov {
+            let n = self.setup.structure.dofs();
+            let blocks = l.du.chunks(n).chain(l.dv.chunks(n));
+            if blocks.into_iter().any(|x| ties.iter().any(|&(a, b)| x[a] != x[b])) {
+                return bad("a tangent vector's member end differs from its joint".to_string());
+            }
+        }
         if !self.readouts.fits(&s.accelerations) {
             return bad("accelerations of the wrong length or not finite".to_string());
         }

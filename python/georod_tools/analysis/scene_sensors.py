@@ -24,8 +24,25 @@ class NotAnalysableError(ValueError):
 @dataclass(frozen=True)
 class Sensor:
     name: str
-    at: float
+    #: Where it reads: ``("", at)`` on a rod, ``(joint, None)`` at a frame's joint, ``(member,
+    #: at)`` on a frame's member.
+    place: tuple[str, float | None]
     quantity: str
+
+    def same_place(self, other: Sensor) -> bool:
+        (a, x), (b, y) = self.place, other.place
+        if x is None or y is None:
+            return a == b and x == y
+        return a == b and abs(x - y) < 1e-12
+
+
+def place(entry: dict) -> tuple[str, float | None]:
+    """A scene entry's place: its joint, or its member (none on a rod) and station."""
+    if "joint" in entry and "member" not in entry:
+        return str(entry["joint"]), None
+    if "joint" in entry:  # a member's end section at a joint
+        return f"{entry['member']}@{entry['joint']}", None
+    return str(entry.get("member", "")), float(entry["at"])
 
 
 @dataclass(frozen=True)
@@ -47,7 +64,7 @@ def scene_sensors(model: FmuModel) -> list[Sensor]:
         raise NotAnalysableError(
             f"{model.identifier}: cannot read its scene file {path}: {e}"
         ) from e
-    return [Sensor(s["name"], float(s["at"]), s["quantity"]) for s in scene.get("sensor", [])]
+    return [Sensor(s["name"], place(s), s["quantity"]) for s in scene.get("sensor", [])]
 
 
 def pick(model: FmuModel, sensor: str | None) -> Sampled:
@@ -77,7 +94,5 @@ def pick(model: FmuModel, sensor: str | None) -> Sampled:
                 f"--sensor {sensor}: reads {chosen.quantity}, not a displacement (u1, u2, w)"
             )
     want = PARTNER[chosen.quantity]
-    partner = next(
-        (s for s in sensors if s.quantity == want and abs(s.at - chosen.at) < 1e-12), None
-    )
+    partner = next((s for s in sensors if s.quantity == want and s.same_place(chosen)), None)
     return Sampled(chosen.name, partner.name if partner else "", "Omega" in model.parameters)
