@@ -82,7 +82,20 @@ fn measure(text: &str) -> f64 {
     }
 }
 
+/// Writes the cases' scene files into `target/bench/frames/` (for `scripts/bench_frames`,
+/// which counts their instructions).
+fn write_scenes() {
+    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/target/bench/frames");
+    std::fs::create_dir_all(dir).expect("target/bench/frames");
+    for n in [40, 400, 4000] {
+        for (name, text) in [("rod", rod(n)), ("open", frame(n, false)), ("ring", frame(n, true))] {
+            std::fs::write(format!("{dir}/{name}{n}.toml"), text).expect("a scene file");
+        }
+    }
+}
+
 fn main() {
+    write_scenes();
     println!(
         "| elements | rod us / step | open 4-member frame | ratio | closed 4-member ring | ratio |"
     );
