@@ -117,7 +117,12 @@ class CustomBuildHook(BuildHookInterface):
         else:
             stage = Path(self._tmp.name) / "stage"
             stage.mkdir()
-            tag = build_from_source(Path(self.root), stage, self.metadata.version)
+            try:
+                tag = build_from_source(Path(self.root), stage, self.metadata.version)
+            except RustNeeded as e:
+                # The message alone, without a traceback around it: pip shows it as it is.
+                print(f"\nerror: {e}\n", file=sys.stderr)
+                raise SystemExit(1) from None
         exes = [e for e in ("georod", "georod.exe") if (stage / e).is_file()]
         if len(exes) != 1:
             raise RuntimeError(f"{stage}: expected one of georod, georod.exe; found {exes}")
