@@ -15,6 +15,7 @@ is test_wheel_smoke.py):
 
 from __future__ import annotations
 
+import hashlib
 import re
 import shutil
 import subprocess
@@ -203,7 +204,15 @@ def test_the_source_distribution_needs_rust_and_builds_with_it(tmp_path: Path) -
     r = run([*pip_download, "hatchling==1.33.0"], timeout=600)
     assert r.returncode == 0, r.stderr
     run([getattr(sys, "_base_executable", sys.executable), "-m", "venv", tmp_path / "src"])
-    pip = [tmp_path / "src" / "bin" / "python", "-m", "pip", "install", "--no-deps"]
+    # --no-cache-dir: a wheel pip built from the same sdist before would skip the build.
+    pip = [
+        tmp_path / "src" / "bin" / "python",
+        "-m",
+        "pip",
+        "install",
+        "--no-deps",
+        "--no-cache-dir",
+    ]
     pip += ["--no-index", "--find-links", house, sdist]
     # Only the venv's bin/: Debian's /bin and /usr/bin hold a cargo (cargo-web).
     no_rust = {"PATH": str(tmp_path / "src" / "bin"), "HOME": str(tmp_path)}
@@ -215,7 +224,14 @@ def test_the_source_distribution_needs_rust_and_builds_with_it(tmp_path: Path) -
     cargo = Path(shutil.which("cargo") or "cargo").parent
     # rustup's cargo finds its toolchains under the real HOME; /usr/bin has the C linker.
     with_rust = {"PATH": f"{no_rust['PATH']}:{cargo}:/usr/bin", "HOME": str(Path.home())}
-    with_rust["CARGO_TARGET_DIR"] = str(REPO / "target" / "sdist")
+    # The sources of an sdist all carry one fixed date, so cargo cannot see a change in them:
+    # one target folder per sdist content (the same sdist rebuilt reuses its build).
+    builds = REPO / "target" / "sdist"
+    digest = hashlib.sha256(sdist.read_bytes()).hexdigest()[:16]
+    for old in builds.glob("*"):
+        if old.name != digest:
+            shutil.rmtree(old)
+    with_rust["CARGO_TARGET_DIR"] = str(builds / digest)
     r = run(pip, env=with_rust, timeout=890)
     assert r.returncode == 0, r.stderr[-3000:]
     georod = tmp_path / "src" / "bin" / "georod"
