@@ -107,3 +107,13 @@ def test_a_missing_command_is_named_with_how_to_get_it(
     (tmp_path / "Cargo.toml").unlink()
     with pytest.raises(command.NotFound, match="install the georod wheel"):
         command.executable()
+
+
+def test_an_installation_without_scenes_asks_for_an_fmu(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """georod-tools --scene NAME needs the checkout's scenes/; an installed wheel has none."""
+    monkeypatch.setattr(georod, "SCENE_DIR", tmp_path / "scenes")
+    monkeypatch.setattr(georod, "FMU_DIR", tmp_path / "fmu")
+    with pytest.raises(ValueError, match=r"no scenes/ folder .*; pass --fmu FILE\.fmu"):
+        georod.fmu_path("BuckledBeam")
