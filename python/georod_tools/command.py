@@ -4,9 +4,9 @@ that starts it from an installed wheel.
 - **Installed wheel** (``pip install georod``): the command lies in the bundle
   ``georod_tools/bin/`` beside this module, with the FMU library of every platform and
   ``bundle.toml`` listing them; the ``georod`` console script (:func:`start`) starts it.
-- **Source checkout** (this package imported from ``<repo>/python``): cargo's
-  ``<repo>/target/release/georod`` (``cargo build --release --bin georod``, or
-  ``scripts/build_fmus``).
+- **Source checkout** (this package imported from ``<repo>/python``): ``<repo>/target/libs/
+  georod`` where ``scripts/build_libs`` puts it, else cargo's ``<repo>/target/release/georod``
+  (``cargo build --release --bin georod``, or ``scripts/build_fmus``).
 
 Anything else is an error that names what is missing and how to get it (:class:`NotFound`).
 """
@@ -55,12 +55,13 @@ def executable() -> Path:
             )
         return exe
     if is_checkout():
-        exe = REPO_ROOT / "target" / "release" / EXE_NAME
-        if not exe.is_file():
+        built = [REPO_ROOT / "target" / folder / EXE_NAME for folder in ("libs", "release")]
+        exe = next((e for e in built if e.is_file()), None)
+        if exe is None:
             raise NotFound(
-                f"{exe} is missing: this georod_tools is a source checkout's ({REPO_ROOT}); "
-                "build the command with `cargo build --release --bin georod` (or "
-                "scripts/build_fmus, which also builds the FMU libraries)"
+                f"{built[-1]} is missing: this georod_tools is a source checkout's "
+                f"({REPO_ROOT}); build the command with `cargo build --release --bin georod` "
+                "(or scripts/build_fmus, which also builds the FMU libraries)"
             )
         return exe
     raise NotFound(

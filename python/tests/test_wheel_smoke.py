@@ -26,8 +26,21 @@ from wheel_env import VERSION, Venv, bundle_of, fresh_venv, pack, require, run, 
 pytestmark = pytest.mark.timeout(120)
 
 TARGET = REPO / "target"
-LINUX64 = TARGET / "x86_64-unknown-linux-gnu" / "release" / "libgeorod.so"
-WIN64 = TARGET / "x86_64-pc-windows-gnu" / "release" / "georod.dll"
+
+
+def built(*places: Path) -> Path:
+    """The first of `places` that exists (target/libs/, where scripts/build_libs puts what it
+    builds, then cargo's own target folder), else the last (require() names it)."""
+    return next((p for p in places if p.is_file()), places[-1])
+
+
+LINUX64 = built(
+    TARGET / "libs" / "libgeorod.so",
+    TARGET / "x86_64-unknown-linux-gnu" / "release" / "libgeorod.so",
+)
+WIN64 = built(
+    TARGET / "libs" / "georod.dll", TARGET / "x86_64-pc-windows-gnu" / "release" / "georod.dll"
+)
 CANTILEVER = REPO / "examples" / "Cantilever.toml"
 
 
