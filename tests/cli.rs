@@ -257,3 +257,15 @@ fn check_groups_shape_arrays_and_prints_the_static_reactions() {
     assert!(reaction.contains(&format!("Ry = {p:+.6e}")), "{reaction}");
     assert!(text.contains("sensor  w_tip"), "{text}");
 }
+
+#[test]
+fn version_prints_the_crate_version() {
+    for flag in ["--version", "-V"] {
+        let out = georod(&[flag]);
+        assert!(out.status.success(), "{flag}: {}", text(&out.stderr));
+        assert_eq!(
+            text(&out.stdout),
+            format!("georod {}\n", env!("CARGO_PKG_VERSION"))
+        );
+    }
+}

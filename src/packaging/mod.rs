@@ -3,7 +3,8 @@
 //! whatever the scene: linux64, win64, darwin64, see [`binaries`]),
 //! `resources/scene.toml` (the scene file, read again by the binary at instantiation) and
 //! `documentation/index.html`; or into an FMI 3.0 one ([`fmu3`]) with the same libraries.
-//! Archives are reproducible: fixed entry order and timestamps.
+//! Archives are reproducible: fixed entry order and timestamps, no path or date of the build
+//! ([`write_archive`]).
 pub mod binaries;
 pub mod documentation;
 pub mod fmu3;
@@ -145,13 +146,19 @@ pub(crate) fn write_atomically(
         .len())
 }
 
-/// A zip of `(path, bytes, executable)` entries, in this order, with fixed timestamps.
+/// A zip of `(path, bytes, executable)` entries, in this order, every one dated
+/// 1980-01-01 00:00 (zip's epoch). Nothing of the machine or the moment enters the archive:
+/// entries are marked Unix-made on every platform, deflated by the same pure-Rust code
+/// (miniz_oxide), and dated explicitly (zip's `time` feature, if any crate turned it on,
+/// would otherwise date them now). The same scene and libraries give the same bytes, on
+/// Linux and Windows alike (python/tests/test_wheel_smoke.py, scripts/test_wheels).
 pub(crate) fn write_archive(tmp: &Path, entries: &[(&str, &[u8], bool)]) -> Result<(), String> {
     let io = |e: std::io::Error| format!("{}: {e}", tmp.display());
     let zerr = |e: zip::result::ZipError| format!("{}: {e}", tmp.display());
     let mut zip = ZipWriter::new(fs::File::create(tmp).map_err(io)?);
     let text = SimpleFileOptions::default()
         .compression_method(CompressionMethod::Deflated)
+        .last_modified_time(zip::DateTime::default())
         .unix_permissions(0o644);
     for &(path, bytes, executable) in entries {
         let options = if executable {
@@ -177,4 +184,28 @@ pub fn default_library() -> Result<PathBuf, String> {
         std::env::consts::DLL_SUFFIX
     );
     Ok(dir.join(name))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn archives_are_dated_at_the_zip_epoch_and_the_same_bytes_each_time() {
+        let dir = std::env::temp_dir().join(format!("georod-archive-{}", std::process::id()));
+        fs::create_dir_all(&dir).unwrap();
+        let entries: [(&str, &[u8], bool); 2] = [("a.txt", b"a", false), ("bin/x.so", b"x", true)];
+        let (one, two) = (dir.join("one.zip"), dir.join("two.zip"));
+        write_archive(&one, &entries).unwrap();
+        write_archive(&two, &entries).unwrap();
+        assert_eq!(fs::read(&one).unwrap(), fs::read(&two).unwrap());
+        let mut zip = zip::ZipArchive::new(fs::File::open(&one).unwrap()).unwrap();
+        for i in 0..zip.len() {
+            let entry = zip.by_index(i).unwrap();
+            let date = entry.last_modified().unwrap();
+            assert_eq!((date.year(), date.month(), date.day()), (1980, 1, 1));
+            assert_eq!((date.hour(), date.minute(), date.second()), (0, 0, 0));
+        }
+        let _ = fs::remove_dir_all(&dir);
+    }
 }

@@ -1,4 +1,5 @@
-"""The core's own command line, ``target/release/georod`` (``cargo build --release``): model
+"""The core's own command line, ``georod`` (:func:`georod_tools.command.executable`: a wheel's
+bundled command, or a source checkout's ``target/release/georod``): model
 quantities the FMUs do not output (static load paths, equilibria and their natural frequencies)
 and the cost of the core's step loop without FMI.
 
@@ -8,7 +9,6 @@ RuntimeError with georod's own message.
 
 from __future__ import annotations
 
-import subprocess
 import tempfile
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -16,22 +16,15 @@ from pathlib import Path
 
 import numpy as np
 
-from georod_tools import REPO_ROOT
-
-#: The georod command that ``cargo build --release`` builds.
-GEOROD = REPO_ROOT / "target" / "release" / "georod"
+from georod_tools.api import run
 
 Overrides = Mapping[str, float] | None
 
 
 def georod(*args: str) -> str:
-    """Runs ``georod ARGS`` and returns its standard output."""
-    if not GEOROD.is_file():
-        raise FileNotFoundError(f"{GEOROD} missing: run cargo build --release --bin georod")
-    r = subprocess.run([str(GEOROD), *args], capture_output=True, text=True, check=False)
-    if r.returncode != 0:
-        raise RuntimeError(f"georod {' '.join(args)} failed ({r.returncode}): {r.stderr.strip()}")
-    return r.stdout
+    """Runs ``georod ARGS`` and returns its standard output (raises
+    :class:`georod_tools.api.GeorodError`, a RuntimeError, with georod's message)."""
+    return run(*args)
 
 
 def set_options(overrides: Overrides) -> list[str]:

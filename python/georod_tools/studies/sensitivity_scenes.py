@@ -30,8 +30,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from georod_tools import REPO_ROOT, SCENE_DIR
+from georod_tools.command import executable
 from georod_tools.fmu import FmuModel, lend
-from georod_tools.fmu.core_command import GEOROD
 
 BASE_SCENE = SCENE_DIR / "BuckledBeam.toml"
 LIBRARY = REPO_ROOT / "target" / "release" / "libgeorod.so"
@@ -146,7 +146,7 @@ def package(spec: SceneSpec, name: str, folder: Path) -> Path:
     scene = folder / f"{name}.toml"
     scene.write_text(scene_text(spec, name))
     fmu = folder / f"{name}.fmu"
-    cmd = [str(GEOROD), "fmu", str(scene), "-o", str(fmu), "--lib", str(LIBRARY)]
+    cmd = [str(executable()), "fmu", str(scene), "-o", str(fmu), "--lib", str(LIBRARY)]
     r = subprocess.run(cmd, capture_output=True, text=True, check=False)
     if r.returncode != 0:
         raise RuntimeError(f"georod fmu {scene} failed: {r.stderr.strip()}")

@@ -1,5 +1,6 @@
 //! `georod`: package a scene file into an FMU, or run a scene through the Rust core directly.
 mod args;
+mod bundle;
 mod fmu;
 mod modal;
 mod report;
@@ -20,12 +21,14 @@ const COMMANDS: [(&str, &str); 7] = [
         "fmu",
         "fmu FILE.toml [-o OUT.fmu] [--fmi 2|3] [--lib LIB] [--binary PLATFORM=FILE]...
     package a scene file into an FMI 2.0 (default) or 3.0 Co-Simulation FMU (default OUT:
-    <target>/fmu/<name>.fmu, or fmu3/ for FMI 3.0, beside this executable's target folder) with a
-    library for each platform (linux64, win64, darwin64; one library exports both versions'
-    functions): FILE, else the one scripts/build_fmus built in that target folder (LIB or the
-    library next to this executable for this platform); each is checked (format, architecture,
-    every FMI function exported) and a platform left out is named with how to build it;
-    a bad scene file is refused with the file, the key and what is allowed, and nothing is written",
+    <target>/fmu/<name>.fmu, or fmu3/ for FMI 3.0, beside this executable's target folder; an
+    installed georod (pip): <name>.fmu in the working directory) with a library for each
+    platform (linux64, win64, darwin64; one library exports both versions' functions): FILE,
+    else the installation's (bundle.toml beside an installed georod lists them), else the one
+    scripts/build_fmus built in that target folder (LIB or the library next to this executable
+    for this platform); each is checked (format, architecture, every FMI function exported)
+    and a platform left out is named with how to build it; a bad scene file is refused with
+    the file, the key and what is allowed, and nothing is written",
     ),
     (
         "check",
@@ -76,8 +79,9 @@ pre_shortening, f_ctrl, ...). Steps, times, lengths (H, T, DT, MAX_LOAD, FRACTIO
 numbers > 0, counts (N) whole numbers > 0. Exit status: 0 done, 1 failed, 2 a bad command line.";
 
 fn usage() -> String {
-    let mut u =
-        String::from("usage: georod COMMAND [OPTIONS]   (georod COMMAND --help for one)\n\n");
+    let mut u = String::from(
+        "usage: georod COMMAND [OPTIONS]   (georod COMMAND --help for one; georod --version)\n\n",
+    );
     for (_, help) in COMMANDS {
         let _ = writeln!(u, "  {}\n", help.replace('\n', "\n  "));
     }
@@ -259,6 +263,10 @@ fn run(args: &[String]) -> Result<(), Failure> {
     };
     if matches!(command.as_str(), "-h" | "--help" | "help") {
         println!("{}", usage());
+        return Ok(());
+    }
+    if matches!(command.as_str(), "-V" | "--version") {
+        println!("georod {}", env!("CARGO_PKG_VERSION"));
         return Ok(());
     }
     let Some((_, help)) = COMMANDS.iter().find(|(name, _)| name == command) else {
