@@ -88,7 +88,11 @@ fn write_scenes() {
     let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/target/bench/frames");
     std::fs::create_dir_all(dir).expect("target/bench/frames");
     for n in [40, 400, 4000] {
-        for (name, text) in [("rod", rod(n)), ("open", frame(n, false)), ("ring", frame(n, true))] {
+        for (name, text) in [
+            ("rod", rod(n)),
+            ("open", frame(n, false)),
+            ("ring", frame(n, true)),
+        ] {
             std::fs::write(format!("{dir}/{name}{n}.toml"), text).expect("a scene file");
         }
     }

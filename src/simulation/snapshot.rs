@@ -191,7 +191,10 @@ impl Simulation {
         if let Some(l) = &s.lyapunov {
             let n = self.setup.structure.dofs();
             let blocks = l.du.chunks(n).chain(l.dv.chunks(n));
-            if blocks.into_iter().any(|x| ties.iter().any(|&(a, b)| x[a] != x[b])) {
+            if blocks
+                .into_iter()
+                .any(|x| ties.iter().any(|&(a, b)| x[a] != x[b]))
+            {
                 return bad("a tangent vector's member end differs from its joint".to_string());
             }
         }

@@ -117,6 +117,8 @@ fn trace(o: &Options, max_load: f64) -> Result<StaticPath, String> {
     settings.max_points = 20_000;
     settings.max_displacement = match scene.param_index("H") {
         Some(i) => 4.0 * values.get(i),
+        // A frame's snap-backs (Lee's) run to displacements of the order of its size.
+        None if !rod.is_single() => length,
         None => 0.4 * length,
     };
     let (path, start) = follow_both_ways(&rod, &u0, load0, &q, &settings);
