@@ -38,6 +38,7 @@ pub fn initial_displacements(
         for (h, x) in setup.held.iter().zip(&targets) {
             h.set(&mut u, *x);
         }
+        rod.make_consistent(&mut u);
         return Ok(u);
     }
     let mut constant = setup.loads.constant_vector().to_vec();
@@ -181,6 +182,7 @@ fn ramp_with(
         for (h, x) in setup.held.iter().zip(targets) {
             h.set(u, lambda * x);
         }
+        rod.make_consistent(u);
         match solver.solve(rod, u, &f) {
             Ok(_) => {
                 num += 1;

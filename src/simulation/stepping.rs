@@ -187,6 +187,9 @@ impl Simulation {
         for (h, path) in moving.zip(&self.motion_path) {
             self.trial.u[h.dof] = path.position(1.0);
         }
+        if !self.motion_path.is_empty() {
+            self.setup.structure.make_consistent(&mut self.trial.u);
+        }
         self.check_trial()
             .map_err(|what| format!("a non-finite {what} after the step"))?;
         let energies = if check_energies {

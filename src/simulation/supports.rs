@@ -92,6 +92,8 @@ impl<A: Assembly> MotionSolver<A> {
         if !any {
             return;
         }
+        // A frame's member ends at a moving joint change speed with it.
+        rod.make_consistent(&mut self.dv);
         self.impulse.fill(0.0);
         rod.add_mass_times(&self.dv, &mut self.impulse, -1.0);
         rod.zero_constrained(&mut self.impulse);

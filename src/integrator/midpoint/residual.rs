@@ -63,6 +63,10 @@ impl<A: Assembly> Midpoint<A> {
         for &(dof, increment) in prescribed {
             self.du[dof] = increment;
         }
+        if !prescribed.is_empty() {
+            // A frame's member ends at a moving joint move with it.
+            rod.make_consistent(&mut self.du);
+        }
     }
 
     /// The residual `R(du)` at the current `du` into `residual` and the Jacobian where
