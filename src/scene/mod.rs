@@ -14,6 +14,7 @@ mod file;
 pub mod frame;
 mod frame_check;
 mod frame_mesh;
+mod frame_outputs;
 mod items;
 mod load_kinds;
 mod mechanics;
@@ -22,6 +23,7 @@ pub mod quantity;
 pub mod readouts;
 pub mod sections;
 mod syntax;
+pub mod variable_kinds;
 pub mod variables;
 
 pub use params::{Param, ParamError, ParamValues, Range, Std, VarType, Variability};

@@ -2,8 +2,8 @@
 //! the rod) and `[modes]` (natural frequencies of the initial state).
 use super::checker::Checker;
 use super::file::{ModesFile, ShapeFile};
-use super::variables::{self, OutputId};
-use super::{Quantity, Scene, SceneError};
+use super::variable_kinds as variables;
+use super::{Quantity, SceneError};
 
 /// Default shape samples when `[shape]` or its `points` is absent.
 const DEFAULT_SHAPE_POINTS: usize = 21;
@@ -65,45 +65,4 @@ pub(super) fn modes(c: &Checker, raw: Option<&ModesFile>) -> Result<usize, Scene
         );
     }
     Ok(count as usize)
-}
-
-/// Value reference of `shape_<field>[1]` of the `k`-th field: a block of
-/// [`variables::MAX_SHAPE_POINTS`] per field after `shape_y`.
-pub const SHAPE_FIELD_VR: u32 = 30_000;
-/// Value reference of `frequency[1]`.
-pub const FREQUENCY_VR: u32 = 52;
-
-/// The outputs `shape_<field>[i]` and `frequency[k]`.
-pub(super) fn outputs(scene: &Scene) -> Vec<variables::Variable> {
-    let mut vars = Vec::new();
-    for (field, q) in scene.shape_fields.iter().enumerate() {
-        let base = SHAPE_FIELD_VR + (field * variables::MAX_SHAPE_POINTS) as u32;
-        for point in 0..scene.shape_samples() {
-            vars.push(variables::output(
-                format!("shape_{}[{}]", q.name(), point + 1),
-                base + point as u32,
-                Some(q.unit()),
-                format!("{} {}", q.what(), scene.shape_sample_text(point)),
-                OutputId::ShapeField { field, point },
-            ));
-        }
-    }
-    for k in 0..scene.modes {
-        let mut v = variables::output(
-            format!("frequency[{}]", k + 1),
-            FREQUENCY_VR + k as u32,
-            Some("Hz"),
-            format!(
-                "Natural frequency {} (ascending) of the initial state: undamped, about the \
-                 static equilibrium under the constant loads and prescribed displacements, \
-                 computed at fmi2ExitInitializationMode (negative, -sqrt(-omega^2) / (2 pi), for an \
-                 unstable direction)",
-                k + 1
-            ),
-            OutputId::Frequency(k),
-        );
-        v.timing = variables::Timing::Discrete;
-        vars.push(v);
-    }
-    vars
 }
