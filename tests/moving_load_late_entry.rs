@@ -11,10 +11,10 @@
 //! Run: `cargo test --profile quick --test moving_load_late_entry -- --nocapture`
 mod common;
 
+use common::moving::Crossing;
 use common::{output, Table};
 use georod::scene::Scene;
 use georod::simulation::Simulation;
-use std::f64::consts::PI;
 use std::sync::Arc;
 
 /// Steel, 200 x 200 mm, span 10 m (L/h = 50), no damping; P = 10 kN at 30 m/s.
@@ -83,21 +83,16 @@ quantity = "v2"
     Simulation::new(scene.clone(), scene.defaults()).expect("initial state")
 }
 
-/// The undamped Euler-Bernoulli beam's deflection at `x` a time `t` after the force entered
-/// (modal series from rest, 60 modes): `q_j = 2 P / (mu L) (sin(W_j t) - W_j / omega_j
-/// sin(omega_j t)) / (omega_j^2 - W_j^2)`, `W_j = j pi v / L`.
+/// The modal series of the Euler-Bernoulli beam (tests/common/moving.rs).
 fn series(x: f64, t: f64) -> f64 {
-    let mu = mass_per_length();
-    (1..=60)
-        .map(|j| {
-            let k = j as f64 * PI / LENGTH;
-            let omega = k * k * (ei() / mu).sqrt();
-            let w = k * SPEED;
-            let q = 2.0 * FORCE / (mu * LENGTH) * ((w * t).sin() - w / omega * (omega * t).sin())
-                / (omega * omega - w * w);
-            -q * (k * x).sin()
-        })
-        .sum()
+    let crossing = Crossing {
+        length: LENGTH,
+        ei: ei(),
+        mu: mass_per_length(),
+        force: FORCE,
+        speed: SPEED,
+    };
+    crossing.deflection(x, t)
 }
 
 #[test]

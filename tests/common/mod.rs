@@ -4,6 +4,8 @@
 //! the adapters to the scene layer used by the tests (see [`simulation`]).
 #![allow(dead_code)]
 
+pub mod moving;
+
 use georod::model::loads::{LoadShape, LoadTime};
 use georod::model::rod::{U1, U2};
 use georod::model::{LoadSet, ReferenceCurve, Rod, Section};
