@@ -7,6 +7,7 @@ a message saying what is missing; a skip (pytest.skip, a skip mark) is reported 
 
 from __future__ import annotations
 
+import os
 import shutil
 from collections.abc import Iterator
 from pathlib import Path
@@ -17,8 +18,7 @@ import pytest
 from helpers import (
     FMU3_DIR,
     FMU_DIR,
-    GEOROD_CLI,
-    RELEASE_DIR,
+    GEOROD_LIB,
     REPO,
     SCENE_FILES,
     SCENES,
@@ -26,8 +26,8 @@ from helpers import (
     run_cmd,
     stale_fmus,
 )
+from scene_fmus import ensure_georod
 
-RELEASE_LIB = RELEASE_DIR / "libgeorod.so"
 BUILD_FMUS = REPO / "scripts" / "build_fmus"
 
 
@@ -79,18 +79,18 @@ def pytest_make_collect_report(collector: pytest.Collector):  # noqa: ANN201
 def fmu_paths() -> dict[str, Path]:
     """target/fmu/<Scene>.fmu for every scene of scenes/; runs scripts/build_fmus once if the FMU
     of any scene file (scenes/ and examples/, all of which it packages), in either FMI version, is
-    missing, older than the release library or older than its scene file."""
+    missing, older than the library of target/libs or older than its scene file."""
 
     def stale() -> list[str]:
         return [
-            *stale_fmus(SCENE_FILES, FMU_DIR, RELEASE_LIB),
-            *(f"fmu3/{why}" for why in stale_fmus(SCENE_FILES, FMU3_DIR, RELEASE_LIB)),
+            *stale_fmus(SCENE_FILES, FMU_DIR, GEOROD_LIB),
+            *(f"fmu3/{why}" for why in stale_fmus(SCENE_FILES, FMU3_DIR, GEOROD_LIB)),
         ]
 
     if stale():
         if not BUILD_FMUS.exists():
             pytest.fail(f"FMUs missing or stale and {BUILD_FMUS} does not exist")
-        r = run_cmd([BUILD_FMUS], timeout=1200)
+        r = run_cmd([BUILD_FMUS], timeout=1200, env=dict(os.environ, PROFILE="quick"))
         if r.returncode != 0:
             pytest.fail(
                 f"scripts/build_fmus failed ({r.returncode}):\n"
@@ -160,9 +160,6 @@ def beam(fmus: dict[str, FmuInfo]) -> FmuInfo:
 
 @pytest.fixture(scope="session")
 def georod_cli() -> Path:
-    """target/release/georod (the core without FMI); built once with cargo if missing."""
-    if not GEOROD_CLI.exists():
-        r = run_cmd(["cargo", "build", "--release", "--bin", "georod"], timeout=1800)
-        if r.returncode != 0 or not GEOROD_CLI.exists():
-            pytest.fail(f"cargo build --release --bin georod failed:\n{r.stderr[-3000:]}")
-    return GEOROD_CLI
+    """target/libs/georod (the core without FMI); built by scripts/build_libs if missing or
+    stale."""
+    return ensure_georod()

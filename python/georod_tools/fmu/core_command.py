@@ -1,4 +1,4 @@
-"""The core's own command line, ``target/release/georod`` (``cargo build --release``): model
+"""The core's own command line, ``target/libs/georod`` (``scripts/build_libs``): model
 quantities the FMUs do not output (static load paths, equilibria and their natural frequencies)
 and the cost of the core's step loop without FMI.
 
@@ -18,8 +18,8 @@ import numpy as np
 
 from georod_tools import REPO_ROOT
 
-#: The georod command that ``cargo build --release`` builds.
-GEOROD = REPO_ROOT / "target" / "release" / "georod"
+#: The georod command that ``scripts/build_libs`` builds (scripts/build_fmus runs it).
+GEOROD = REPO_ROOT / "target" / "libs" / "georod"
 
 Overrides = Mapping[str, float] | None
 
@@ -27,7 +27,7 @@ Overrides = Mapping[str, float] | None
 def georod(*args: str) -> str:
     """Runs ``georod ARGS`` and returns its standard output."""
     if not GEOROD.is_file():
-        raise FileNotFoundError(f"{GEOROD} missing: run cargo build --release --bin georod")
+        raise FileNotFoundError(f"{GEOROD} missing: run scripts/build_libs")
     r = subprocess.run([str(GEOROD), *args], capture_output=True, text=True, check=False)
     if r.returncode != 0:
         raise RuntimeError(f"georod {' '.join(args)} failed ({r.returncode}): {r.stderr.strip()}")
