@@ -7,9 +7,11 @@ a message saying what is missing; a skip (pytest.skip, a skip mark) is reported 
 
 from __future__ import annotations
 
+import fcntl
 import os
 import shutil
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import fmpy
@@ -87,6 +89,28 @@ def fmu_paths() -> dict[str, Path]:
             *(f"fmu3/{why}" for why in stale_fmus(SCENE_FILES, FMU3_DIR, GEOROD_LIB)),
         ]
 
+    # One pytest-xdist worker builds, the others wait and then find the FMUs up to date.
+    with build_lock():
+        build_stale_fmus(stale)
+    return {s: FMU_DIR / f"{s}.fmu" for s in SCENES}
+
+
+@contextmanager
+def build_lock() -> Iterator[None]:
+    """An exclusive lock on target/.fmu-build.lock: the workers of one pytest run (xdist) never
+    package the FMUs at once, nor read them while another packages them."""
+    lock = REPO / "target" / ".fmu-build.lock"
+    lock.parent.mkdir(parents=True, exist_ok=True)
+    with lock.open("w") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def build_stale_fmus(stale: Callable[[], list[str]]) -> None:
+    """Runs scripts/build_fmus when `stale` names any FMU; fails when it cannot."""
     if stale():
         if not BUILD_FMUS.exists():
             pytest.fail(f"FMUs missing or stale and {BUILD_FMUS} does not exist")
@@ -99,7 +123,6 @@ def fmu_paths() -> dict[str, Path]:
         left = stale()
         if left:
             pytest.fail(f"scripts/build_fmus left FMUs out of date: {'; '.join(left)}")
-    return {s: FMU_DIR / f"{s}.fmu" for s in SCENES}
 
 
 @pytest.fixture(scope="session")
