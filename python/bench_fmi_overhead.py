@@ -4,7 +4,7 @@
 Times N doStep calls of one internal sub-step each (communication step h == dt_max) of the
 BuckledBeam (10 elements) through fmpy.fmi2.FMU2Slave and fmpy.fmi3.FMU3Slave (the FMI 2.0 and
 3.0 FMUs of the scene, one library), against the same N steps in the Rust core directly
-(`target/release/georod bench-steps`), and prints them and their ratio. Then the cost of reading
+(`target/libs/georod bench-steps`), and prints them and their ratio. Then the cost of reading
 the whole shape after a step: the FMI 3.0 arrays (one fmi3GetFloat64 call) against 2 x points
 scalar fmi2GetReal calls.
 
@@ -32,7 +32,7 @@ from georod_tools.cli.args import positive_float, positive_int
 REPO = Path(__file__).resolve().parents[1]
 FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
 FMU3 = REPO / "target" / "fmu3" / "BuckledBeam.fmu"
-CLI = REPO / "target" / "release" / "georod"
+CLI = REPO / "target" / "libs" / "georod"  # scripts/build_fmus (release by default)
 ELEMENTS = 10
 
 

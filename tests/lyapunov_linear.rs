@@ -60,7 +60,9 @@ L = 10.0
 
 [defaults]
 E = 1.2e4
+nu = 0.2
 rho = 1.0e-6
+d = 5.0e-4
 elements = 4
 dt_max = 1.0e-4
 

@@ -5,6 +5,7 @@
 //! Run: `cargo test --profile quick --test scene_moving_load -- --nocapture`
 mod common;
 
+use common::moving::Crossing;
 use common::{output, Table};
 use georod::scene::Scene;
 use georod::simulation::Simulation;
@@ -76,21 +77,16 @@ quantity = "u2"
 }
 
 /// Midspan deflection (along e2) at time `t` after the force entered, by the modal series of
-/// the undamped Euler-Bernoulli beam: `q_j'' + omega_j^2 q_j = 2 P sin(W_j t) / (mu L)`,
-/// `W_j = j pi v / L`, from rest: `q_j = 2 P / (mu L) (sin(W_j t) - W_j / omega_j sin(omega_j
-/// t)) / (omega_j^2 - W_j^2)`, summed over 60 modes.
+/// the undamped Euler-Bernoulli beam (tests/common/moving.rs).
 fn series(speed: f64, t: f64) -> f64 {
-    let mu = mass_per_length();
-    (1..=60)
-        .map(|j| {
-            let k = j as f64 * PI / LENGTH;
-            let omega = k * k * (ei() / mu).sqrt();
-            let w = k * speed;
-            let q = 2.0 * FORCE / (mu * LENGTH) * ((w * t).sin() - w / omega * (omega * t).sin())
-                / (omega * omega - w * w);
-            -q * (0.5 * j as f64 * PI).sin()
-        })
-        .sum()
+    let crossing = Crossing {
+        length: LENGTH,
+        ei: ei(),
+        mu: mass_per_length(),
+        force: FORCE,
+        speed,
+    };
+    crossing.deflection(0.5 * LENGTH, t)
 }
 
 /// The midspan deflection over the crossing, sampled every `dt`.

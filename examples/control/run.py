@@ -3,14 +3,17 @@ coupled by an SSP file and run by two third-party co-simulation engines, libcosi
 libcosimpy) and Ecos (through ecospy).
 
     .venv/bin/python examples/control/run.py      (after scripts/build_fmus)
+    .venv/bin/python examples/control/run.py --build-only [--out DIR]    (scripts/build_ssp)
 
-builds target/control/ControlledBeam.ssp (this folder's SystemStructure.ssd, target/fmu/
-BuckledBeam.fmu and the controller FMU that pythonfmu builds from velocity_feedback.py), then
-runs it in both engines with the SSP's gain and with the gain 0 (uncontrolled), and prints the
-beam's midspan amplitude over the second half of the run and the controller's work W_ctrl."""
+builds target/control/ControlledBeam.ssp (or DIR/ControlledBeam.ssp: this folder's
+SystemStructure.ssd, target/fmu/BuckledBeam.fmu and the controller FMU that pythonfmu builds from
+velocity_feedback.py, under resources/), then, without --build-only, runs it in both engines with
+the SSP's gain and with the gain 0 (uncontrolled), and prints the beam's midspan amplitude over
+the second half of the run and the controller's work W_ctrl."""
 
 from __future__ import annotations
 
+import argparse
 import shutil
 import subprocess
 import sys
@@ -123,7 +126,18 @@ def run_ecos(ssp: Path, gain: float | None = None) -> Outcome:
 
 
 def main() -> None:
-    ssp = build_ssp(REPO / "target" / "control")
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument(
+        "--build-only", action="store_true", help="write the .ssp, run nothing"
+    )
+    parser.add_argument(
+        "--out", type=Path, default=REPO / "target" / "control", help="folder"
+    )
+    args = parser.parse_args()
+    ssp = build_ssp(args.out)
+    if args.build_only:
+        print(f"wrote {ssp}")
+        return
     print(f"{ssp}: {STOP} s in steps of {STEP} s")
     print("| engine | gain | w_mid amplitude (2nd half) | W_ctrl |")
     print("|---|---:|---:|---:|")

@@ -7,8 +7,11 @@ a message saying what is missing; a skip (pytest.skip, a skip mark) is reported 
 
 from __future__ import annotations
 
+import fcntl
+import os
 import shutil
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 import fmpy
@@ -17,8 +20,7 @@ import pytest
 from helpers import (
     FMU3_DIR,
     FMU_DIR,
-    GEOROD_CLI,
-    RELEASE_DIR,
+    GEOROD_LIB,
     REPO,
     SCENE_FILES,
     SCENES,
@@ -26,8 +28,8 @@ from helpers import (
     run_cmd,
     stale_fmus,
 )
+from scene_fmus import ensure_georod
 
-RELEASE_LIB = RELEASE_DIR / "libgeorod.so"
 BUILD_FMUS = REPO / "scripts" / "build_fmus"
 
 
@@ -79,18 +81,40 @@ def pytest_make_collect_report(collector: pytest.Collector):  # noqa: ANN201
 def fmu_paths() -> dict[str, Path]:
     """target/fmu/<Scene>.fmu for every scene of scenes/; runs scripts/build_fmus once if the FMU
     of any scene file (scenes/ and examples/, all of which it packages), in either FMI version, is
-    missing, older than the release library or older than its scene file."""
+    missing, older than the library of target/libs or older than its scene file."""
 
     def stale() -> list[str]:
         return [
-            *stale_fmus(SCENE_FILES, FMU_DIR, RELEASE_LIB),
-            *(f"fmu3/{why}" for why in stale_fmus(SCENE_FILES, FMU3_DIR, RELEASE_LIB)),
+            *stale_fmus(SCENE_FILES, FMU_DIR, GEOROD_LIB),
+            *(f"fmu3/{why}" for why in stale_fmus(SCENE_FILES, FMU3_DIR, GEOROD_LIB)),
         ]
 
+    # One pytest-xdist worker builds, the others wait and then find the FMUs up to date.
+    with build_lock():
+        build_stale_fmus(stale)
+    return {s: FMU_DIR / f"{s}.fmu" for s in SCENES}
+
+
+@contextmanager
+def build_lock() -> Iterator[None]:
+    """An exclusive lock on target/.fmu-build.lock: the workers of one pytest run (xdist) never
+    package the FMUs at once, nor read them while another packages them."""
+    lock = REPO / "target" / ".fmu-build.lock"
+    lock.parent.mkdir(parents=True, exist_ok=True)
+    with lock.open("w") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def build_stale_fmus(stale: Callable[[], list[str]]) -> None:
+    """Runs scripts/build_fmus when `stale` names any FMU; fails when it cannot."""
     if stale():
         if not BUILD_FMUS.exists():
             pytest.fail(f"FMUs missing or stale and {BUILD_FMUS} does not exist")
-        r = run_cmd([BUILD_FMUS], timeout=1200)
+        r = run_cmd([BUILD_FMUS], timeout=1200, env=dict(os.environ, PROFILE="quick"))
         if r.returncode != 0:
             pytest.fail(
                 f"scripts/build_fmus failed ({r.returncode}):\n"
@@ -99,7 +123,6 @@ def fmu_paths() -> dict[str, Path]:
         left = stale()
         if left:
             pytest.fail(f"scripts/build_fmus left FMUs out of date: {'; '.join(left)}")
-    return {s: FMU_DIR / f"{s}.fmu" for s in SCENES}
 
 
 @pytest.fixture(scope="session")
@@ -160,9 +183,6 @@ def beam(fmus: dict[str, FmuInfo]) -> FmuInfo:
 
 @pytest.fixture(scope="session")
 def georod_cli() -> Path:
-    """target/release/georod (the core without FMI); built once with cargo if missing."""
-    if not GEOROD_CLI.exists():
-        r = run_cmd(["cargo", "build", "--release", "--bin", "georod"], timeout=1800)
-        if r.returncode != 0 or not GEOROD_CLI.exists():
-            pytest.fail(f"cargo build --release --bin georod failed:\n{r.stderr[-3000:]}")
-    return GEOROD_CLI
+    """target/libs/georod (the core without FMI); built by scripts/build_libs if missing or
+    stale."""
+    return ensure_georod()

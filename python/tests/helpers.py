@@ -31,8 +31,11 @@ REPO = Path(__file__).resolve().parents[2]
 FMU_DIR = REPO / "target" / "fmu"
 #: The FMI 3.0 FMUs of the same scene files (scripts/build_fmus writes both versions).
 FMU3_DIR = REPO / "target" / "fmu3"
-RELEASE_DIR = REPO / "target" / "release"
-GEOROD_CLI = RELEASE_DIR / "georod"
+#: What scripts/build_libs builds (scripts/build_fmus runs it): the georod command and the
+#: linux64 (glibc 2.17) and win64 libraries.
+LIBS_DIR = REPO / "target" / "libs"
+GEOROD_CLI = LIBS_DIR / "georod"
+GEOROD_LIB = LIBS_DIR / "libgeorod.so"
 #: The paper's scenes, whose FMUs these tests exercise (scene files in scenes/).
 SCENES: tuple[str, ...] = tuple(sorted(p.stem for p in (REPO / "scenes").glob("*.toml")))
 #: Every scene file that scripts/build_fmus packages into FMU_DIR/<stem>.fmu: the paper's scenes
@@ -271,11 +274,14 @@ def period(omega: float) -> float:
 
 
 def run_cmd(
-    cmd: Sequence[str | os.PathLike[str]], timeout: float = 900.0
+    cmd: Sequence[str | os.PathLike[str]],
+    timeout: float = 900.0,
+    env: Mapping[str, str] | None = None,
 ) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
         [str(c) for c in cmd],
         cwd=REPO,
+        env=env,
         capture_output=True,
         text=True,
         timeout=timeout,

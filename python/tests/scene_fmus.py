@@ -1,22 +1,24 @@
 """Test scene files (python/tests/scenes/*.toml) packaged into FMUs for a test session.
 
-`package_scene` runs `target/release/georod fmu SCENE.toml -o DIR/SCENE.fmu` (the same command a
-user runs) and extracts the result once. The georod command and library are built with cargo when
-they are missing or older than the Rust sources; a failed build or a refused scene fails the test
-with cargo's or georod's own message (no skips: conftest.py turns any skip into a failure).
+`package_scene` runs `target/libs/georod fmu SCENE.toml -o DIR/SCENE.fmu` (the same command a
+user runs) and extracts the result once. The georod command and library are built by
+scripts/build_libs when they are missing or older than the Rust sources; a failed build or a
+refused scene fails the test with the build's or georod's own message (no skips: conftest.py turns
+any skip into a failure).
 """
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import fmpy
 import pytest
 
-from helpers import GEOROD_CLI, RELEASE_DIR, REPO, FmuInfo, run_cmd
+from helpers import GEOROD_CLI, GEOROD_LIB, REPO, FmuInfo, run_cmd
 
 SCENE_DIR = Path(__file__).resolve().parent / "scenes"
-GEOROD_LIB = RELEASE_DIR / "libgeorod.so"
+BUILD_LIBS = REPO / "scripts" / "build_libs"
 
 
 def _newest_source() -> float:
@@ -26,15 +28,13 @@ def _newest_source() -> float:
 
 
 def ensure_georod() -> Path:
-    """target/release/georod and libgeorod.so, built with cargo when missing or stale."""
+    """target/libs/georod and libgeorod.so, built by scripts/build_libs (the quick profile, as
+    scripts/test builds them) when missing or stale."""
     built = [GEOROD_CLI, GEOROD_LIB]
     if all(p.exists() for p in built) and min(p.stat().st_mtime for p in built) >= _newest_source():
         return GEOROD_CLI
-    cmd = ["cargo", "build", "--release", "--lib", "--bin", "georod"]
-    try:
-        r = run_cmd(cmd, timeout=1800)
-    except FileNotFoundError as e:
-        pytest.fail(f"{' '.join(cmd)}: cargo not found ({e}); the FMU tests need the Rust build")
+    cmd = [str(BUILD_LIBS)]
+    r = run_cmd(cmd, timeout=1800, env=dict(os.environ, PROFILE="quick"))
     if r.returncode != 0:
         pytest.fail(f"{' '.join(cmd)} failed ({r.returncode}):\n{r.stderr[-3000:]}")
     missing = [str(p) for p in built if not p.exists()]

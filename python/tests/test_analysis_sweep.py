@@ -5,8 +5,10 @@ PNG; how cases are cut into chunks."""
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -80,15 +82,19 @@ def test_sweep_independent_of_workers(tmp_path: Path) -> None:
 
 
 @pytest.mark.usefixtures("fmu_paths")
-def test_command_line_sweep_leaves_no_extracted_fmu(tmp_path: Path) -> None:
+def test_command_line_sweep_leaves_no_extracted_fmu(
+    tmp_path: Path, request: pytest.FixtureRequest
+) -> None:
     """A sweep on a local cluster of two workers, as its own process with its own temporary
     folder: afterwards no extracted FMU is left there (the client's is removed by its exit
     handler, each worker's with its plugin's folder: worker processes end without exit
     handlers)."""
     from sweep_cases import tiny_cli_options
 
-    temp = tmp_path / "temp"
-    temp.mkdir()
+    # A short temporary folder: multiprocessing's fork server puts its socket there, and a
+    # socket's path is limited to 107 bytes (pytest-xdist's tmp_path alone comes near it).
+    temp = Path(tempfile.mkdtemp(prefix="sweep", dir="/tmp"))
+    request.addfinalizer(lambda: shutil.rmtree(temp, ignore_errors=True))
     out = tmp_path / "sweep"
     args = ["sweep", "--param", "F", "--start", "0.4", "--stop", "2", "--count", "3"]
     r = subprocess.run(

@@ -1,18 +1,21 @@
 """examples/control/: the BuckledBeam FMU under velocity feedback from a pythonfmu controller FMU,
-coupled by an SSP file, run by libcosim (from_ssp_file) and by Ecos (ecospy). With the SSP's gain
-the midspan amplitude falls well below the uncontrolled one and the control force's work W_ctrl
-is negative (the controller removes energy); with the gain 0 W_ctrl stays 0."""
+coupled by an SSP archive that scripts/build_ssp writes (the zip of SystemStructure.ssd and the
+FMUs it names), run by libcosim (from_ssp_file) and by Ecos (ecospy). With the SSP's gain the
+midspan amplitude falls well below the uncontrolled one and the control force's work W_ctrl is
+negative (the controller removes energy); with the gain 0 W_ctrl stays 0."""
 
 from __future__ import annotations
 
 import importlib.util
+import re
 import sys
+import zipfile
 from pathlib import Path
 from types import ModuleType
 
 import pytest
 
-from helpers import REPO
+from helpers import FMU_DIR, REPO, run_cmd
 
 SSP_GAIN = 0.003  # examples/control/SystemStructure.ssd
 
@@ -33,10 +36,28 @@ def example() -> ModuleType:
 
 
 @pytest.fixture(scope="module")
-def ssp(
-    example: ModuleType, fmu_paths: dict[str, Path], tmp_path_factory: pytest.TempPathFactory
-) -> Path:
-    return example.build_ssp(tmp_path_factory.mktemp("control"))
+def ssp(fmu_paths: dict[str, Path], tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The archive written by the documented command, scripts/build_ssp OUT_DIR."""
+    out = tmp_path_factory.mktemp("control")
+    r = run_cmd([REPO / "scripts" / "build_ssp", out], timeout=600)
+    assert r.returncode == 0, f"scripts/build_ssp failed:\n{r.stdout}\n{r.stderr}"
+    return out / "ControlledBeam.ssp"
+
+
+def test_the_archive_holds_the_ssd_and_every_fmu_it_names(ssp: Path) -> None:
+    source = REPO / "examples" / "control" / "SystemStructure.ssd"
+    with zipfile.ZipFile(ssp) as z:
+        names = set(z.namelist())
+        assert z.read("SystemStructure.ssd") == source.read_bytes()
+        components = re.findall(r'source="([^"]+)"', source.read_text())
+        assert sorted(components) == [
+            "resources/BuckledBeam.fmu",
+            "resources/VelocityFeedback.fmu",
+        ]
+        assert names == {"SystemStructure.ssd", *components}, names
+        assert z.read("resources/BuckledBeam.fmu") == (FMU_DIR / "BuckledBeam.fmu").read_bytes()
+        with z.open("resources/VelocityFeedback.fmu") as fmu, zipfile.ZipFile(fmu) as inner:
+            assert "modelDescription.xml" in inner.namelist()
 
 
 @pytest.mark.parametrize("engine", ["run_libcosim", "run_ecos"])

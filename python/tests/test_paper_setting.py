@@ -32,10 +32,18 @@ def test_unknown_keys_are_refused(tmp_path: Path) -> None:
 
 
 @needs_fmu
-def test_study_paper_both_settings_quick(tmp_path: Path) -> None:
+def test_study_paper_both_settings_quick(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     """26 panels at both settings (short runs), the side-by-side table with its counts, each
-    setting in its own folder, the chosen one's scene packaged there."""
+    setting in its own folder, the chosen one's scene packaged there. A smoke version of
+    --quick: 20 + 30 periods a case instead of 150 + 100 (what is checked here is the tables
+    and folders, not the motions; the motions are test_analysis_fmu.py's)."""
     from georod_tools.cli import main
+    from georod_tools.studies.paper import StudySettings
+
+    def smoke(cls: type[StudySettings], fmu: str) -> StudySettings:
+        return cls(fmu=fmu, transient=20, periods=30, dense_periods=5, bif_count=2)
+
+    monkeypatch.setattr(StudySettings, "quick", classmethod(smoke))
 
     settings = tmp_path / "s.json"
     settings.write_text(json.dumps({"pre_shortening": 0.108, "elements": 10, "mass": "lumped"}))

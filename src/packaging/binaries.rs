@@ -53,11 +53,12 @@ impl Platform {
             .ok_or_else(|| format!("unknown platform `{name}`: use linux64, win64 or darwin64"))
     }
 
-    /// Where scripts/build_fmus leaves this platform's library, under the cargo target folder.
+    /// Where scripts/build_libs (which scripts/build_fmus runs) leaves this platform's library,
+    /// under the cargo target folder.
     pub fn built_path(self) -> Option<&'static str> {
         match self {
-            Platform::Linux64 => Some("x86_64-unknown-linux-gnu/release/libgeorod.so"),
-            Platform::Win64 => Some("x86_64-pc-windows-gnu/release/georod.dll"),
+            Platform::Linux64 => Some("libs/libgeorod.so"),
+            Platform::Win64 => Some("libs/georod.dll"),
             Platform::Darwin64 => None,
         }
     }

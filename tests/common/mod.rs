@@ -5,6 +5,7 @@
 #![allow(dead_code)]
 
 pub mod linear_frame;
+pub mod moving;
 
 use georod::model::loads::{LoadShape, LoadTime};
 use georod::model::rod::{U1, U2};

@@ -1,5 +1,5 @@
 """Access to the core: FMUs through fmpy (:mod:`.model`, :mod:`.instance`), FMUs shipped to Dask
-workers (:mod:`.worker`) and the core's own command line ``target/release/georod``
+workers (:mod:`.worker`) and the core's own command line ``target/libs/georod``
 (:mod:`.core_command`). Nothing here knows about analyses; nothing here reads the bytes of a
 serialized FMU state (they travel between instances as an opaque blob)."""
 

@@ -1,5 +1,5 @@
 """The core's own command line, ``georod`` (:func:`georod_tools.command.executable`: a wheel's
-bundled command, or a source checkout's ``target/release/georod``): model
+bundled command, or a source checkout's ``target/libs/georod``): model
 quantities the FMUs do not output (static load paths, equilibria and their natural frequencies)
 and the cost of the core's step loop without FMI.
 

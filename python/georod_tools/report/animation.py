@@ -3,20 +3,25 @@
 :func:`record` runs the FMU from its initial state (communication step `step`, default: the FMU's
 default experiment) and samples the shape at `frames` equally spaced times, with its inputs
 constant or following a :class:`InputTable` (``--inputs FILE``); :func:`render` writes a GIF
-(matplotlib + Pillow) with the initial shape in grey, the supports marked where they are in each
-frame, the time shown, and the factor by which the y axis is stretched when the motion is too flat
-to see in true proportions. The command is ``georod-tools animate``
-(:mod:`georod_tools.cli.animate`).
+(matplotlib + Pillow) with the initial shape in grey, the scene's supports, springs, point loads
+and moving loads marked where they are in each frame (:mod:`georod_tools.report.marks`), the
+legend below the plot (it covers nothing), the time shown, and the factor by which the y axis is
+stretched when the motion is too flat to see in true proportions. The command is
+``georod-tools animate`` (:mod:`georod_tools.cli.animate`).
 """
 
 from __future__ import annotations
 
 import re
 import tomllib
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
+
+from georod_tools.report.marks import STYLES, Mark, marks, positions, resolver
 
 SHAPE = re.compile(r"shape_([xy])\[(\d+)\]$")
 #: The y axis is stretched when the motion's height is below this fraction of its width.
@@ -78,7 +83,8 @@ class Motion:
     times: np.ndarray
     x: np.ndarray
     y: np.ndarray
-    supports: list[tuple[str, float]]
+    #: The scene's items, each with its station in every frame (supports first).
+    marks: list[Mark]
     unit: str = "m"
     #: A field along the rod (``shape_<name>[i]``, e.g. the bending moment) that colours it.
     field: np.ndarray | None = None
@@ -155,10 +161,11 @@ def record(
                     inst.set(name, value)
                 inst.step(k * step, step)
     scene = tomllib.loads((model.unzipdir / "resources" / "scene.toml").read_text("utf-8"))
-    supports = [(s["name"], float(s["at"])) for s in scene.get("support", [])]
+    params = {n: float(v.start) for n, v in model.variables.items() if v.causality == "parameter"}
+    items = marks(scene, np.array(times), resolver({**params, **start_values}))
     unit = model.variables[names[0]].unit or "m"
     motion = Motion(
-        model.identifier, model.guid, np.array(times), np.array(xs), np.array(ys), supports, unit
+        model.identifier, model.guid, np.array(times), np.array(xs), np.array(ys), items, unit
     )
     if field is not None:
         motion.field = np.array(fs)
@@ -167,18 +174,19 @@ def record(
     return motion
 
 
-def render(motion: Motion, out: Path, fps: int) -> Path:
-    """Writes the animation of `motion` to `out` (GIF)."""
+def figure(motion: Motion) -> tuple[Any, Callable[[int], tuple]]:
+    """The animation's figure and the function that draws frame k into it (returning what it
+    changed)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.animation import FuncAnimation, PillowWriter
-    from tqdm import tqdm
 
     x, y = motion.x, motion.y
     width, height = max(np.ptp(x), 1e-12), max(np.ptp(y), 1e-12)
-    fig, ax = plt.subplots(figsize=(8, 4), dpi=80)
+    fig, ax = plt.subplots(figsize=(8, 4.4), dpi=80)
+    # Room below the axes for the legend: inside them it could cover a support's label.
+    fig.subplots_adjust(bottom=0.3)
     ax.set_xlim(x.min() - 0.05 * width, x.max() + 0.05 * width)
     ax.set_ylim(y.min() - 0.1 * height, y.max() + 0.1 * height)
     # True proportions unless the motion would be a flat line in them (a beam deflecting by a
@@ -190,31 +198,33 @@ def render(motion: Motion, out: Path, fps: int) -> Path:
     ax.set_ylabel(f"y [{motion.unit}]" + (f", stretched x{stretch:.3g}" if stretch != 1.0 else ""))
     ax.grid(alpha=0.3)
     ax.plot(x[0], y[0], color="0.75", lw=1.5, label="initial state")
-    at = support_positions(motion)
-    (marks,) = ax.plot(at[0, :, 0], at[0, :, 1], "k^", ms=8)
-    names = [
-        ax.annotate(name, tuple(at[0, j]), textcoords="offset points", xytext=(4, -14))
-        for j, (name, _) in enumerate(motion.supports)
-    ]
     (line,) = ax.plot(x[0], y[0], color="C0", lw=2.5, label="deformed rod")
     colours = field_colours(fig, ax, motion)
     if colours is not None:
         line.set_visible(False)
+    drawn_marks = MarkArtists(ax, motion)
     label = ax.set_title("")
-    ax.legend(loc="upper right")
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=3, fontsize="small")
 
     def frame(k: int) -> tuple:
         line.set_data(x[k], y[k])
         if colours is not None:
             colours.set_segments(segments(x[k], y[k]))
             colours.set_array(midpoints(motion.field[k]))  # type: ignore[index]
-        marks.set_data(at[k, :, 0], at[k, :, 1])
-        for j, name in enumerate(names):
-            name.xy = tuple(at[k, j])
         label.set_text(f"{motion.name}: t = {motion.times[k]:.5f} s")
         drawn = (colours,) if colours is not None else ()
-        return line, marks, label, *names, *drawn
+        return line, label, *drawn_marks.show(k), *drawn
 
+    return fig, frame
+
+
+def render(motion: Motion, out: Path, fps: int) -> Path:
+    """Writes the animation of `motion` to `out` (GIF)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.animation import FuncAnimation, PillowWriter
+    from tqdm import tqdm
+
+    fig, frame = figure(motion)
     anim = FuncAnimation(fig, frame, frames=len(motion.times), blit=True)
     bar = tqdm(total=len(motion.times), desc=f"rendering {out.name}", unit="frame", leave=False)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -224,16 +234,45 @@ def render(motion: Motion, out: Path, fps: int) -> Path:
     return out
 
 
+class MarkArtists:
+    """The scene's items on the axes: one marker line per kind (one legend entry each) and each
+    item's name beside it, moved to where the items are in each frame."""
+
+    def __init__(self, ax: Any, motion: Motion) -> None:
+        self.at = {id(m): positions(m, motion.x, motion.y) for m in motion.marks}
+        self.kinds: dict[str, list[Mark]] = {}
+        for m in motion.marks:
+            self.kinds.setdefault(m.kind, []).append(m)
+        self.lines = {}
+        for kind in self.kinds:
+            style = STYLES[kind]
+            (self.lines[kind],) = ax.plot(
+                [], [], style.marker, color=style.colour, ms=8, ls="none", label=style.legend
+            )
+        self.names = [
+            (m, ax.annotate(m.name, (0.0, 0.0), textcoords="offset points", xytext=(4, -14)))
+            for m in motion.marks
+            if STYLES[m.kind].named
+        ]
+        self.show(0)
+
+    def show(self, k: int) -> list[Any]:
+        """Moves every item to frame k; returns the artists it changed."""
+        for kind, items in self.kinds.items():
+            points = np.array([self.at[id(m)][k] for m in items])
+            self.lines[kind].set_data(points[:, 0], points[:, 1])
+        for m, name in self.names:
+            xy = self.at[id(m)][k]
+            name.set_visible(not np.isnan(xy[0]))
+            if not np.isnan(xy[0]):
+                name.xy = tuple(xy)
+        return [*self.lines.values(), *(name for _, name in self.names)]
+
+
 def support_positions(motion: Motion) -> np.ndarray:
-    """Where each support is in each frame, ``(frames, supports, 2)``: its station interpolated
-    between the two shape samples around it (equally spaced in arc length)."""
-    points = motion.x.shape[1]
-    s = np.linspace(0.0, 1.0, points)
-    out = np.zeros((len(motion.times), len(motion.supports), 2))
-    for j, (_, at) in enumerate(motion.supports):
-        for k in range(len(motion.times)):
-            out[k, j] = np.interp(at, s, motion.x[k]), np.interp(at, s, motion.y[k])
-    return out
+    """Where each support is in each frame, ``(frames, supports, 2)``."""
+    found = [positions(m, motion.x, motion.y) for m in motion.marks if m.kind == "support"]
+    return np.stack(found, axis=1) if found else np.zeros((len(motion.times), 0, 2))
 
 
 def stretch_factor(fig: object, ax: object) -> float:

@@ -34,7 +34,7 @@ from georod_tools.command import executable
 from georod_tools.fmu import FmuModel, lend
 
 BASE_SCENE = SCENE_DIR / "BuckledBeam.toml"
-LIBRARY = REPO_ROOT / "target" / "release" / "libgeorod.so"
+LIBRARY = REPO_ROOT / "target" / "libs" / "libgeorod.so"
 LOADINGS = ("prescribed", "dead", "buckling")
 #: The paper's end shortening (the FMU's default `pre_shortening`).
 PAPER_SHORTENING = 0.11

@@ -121,7 +121,7 @@ fn check(o: &Options) -> Result<(), String> {
     };
     let scene = Arc::new(Scene::load(file).map_err(|e| e.to_string())?);
     let sim = Simulation::new(scene.clone(), scene.defaults())
-        .map_err(|e| format!("{}: with its default parameters: {e}", scene.name))?;
+        .map_err(|e| format!("{file}: {}: with its default parameters: {e}", scene.name))?;
     println!("{file}: scene {} is valid", scene.name);
     print!("{}", report::listing(&scene, &sim));
     Ok(())

@@ -48,7 +48,9 @@ const ALWAYS: [Standard; 8] = [
         1,
         "1",
         "Poisson's ratio (shear modulus G = E / (2 (1 + nu)))",
-        0.2,
+        // A metal's, not the paper's 0.2: a user's scene that says nothing gets no paper value
+        // (the paper's scenes state theirs).
+        0.3,
         // The open interval of an isotropic material (docs/scenes.md): nu = -1 makes G infinite.
         Range::open(-1.0, 0.5),
     ),
@@ -58,7 +60,8 @@ const ALWAYS: [Standard; 8] = [
         3,
         "N.s/m2",
         "Viscous damping per unit length, acting on the translations only",
-        5.0e-4,
+        // Undamped unless the scene says so (the paper's 5e-4 is stated in its scenes).
+        0.0,
         Range::at_least(0.0),
     ),
     real(
