@@ -7,6 +7,8 @@ closed forms; the core runs its own checks in tests/frames_*.rs.
 - PortalSway: a fixed-base portal frame's sway under a lateral load against slope deflection.
 - DeckPath: a load moving slowly along a path of two members: the roller's reaction follows the
   lever rule as the load crosses from the first member to the second.
+- TiedFrame: a three-hinged portal frame whose feet are tied by a link: the tie's tension
+  against statics (the moment about the crown hinge).
 - A frame that is a mechanism is refused by `georod fmu` with the file and the key, and nothing
   is written.
 """
@@ -98,6 +100,22 @@ def test_a_load_crossing_a_path_of_members_follows_the_lever_rule(
             x = t - 0.5
             worst = max(worst, abs(ry - 1000.0 * x / 10.0))
     assert worst < 1.0, f"the roller's reaction is off the lever rule by {worst} N"
+
+
+def test_a_tie_carries_the_thrust_of_a_three_hinged_frame(fmus: Callable[[str], FmuInfo]) -> None:
+    """P down at the crown hinge of a frame of span L and height h: the tie's tension P L / (4 h)
+    and P / 2 on each foot. The joints move by under 1e-6 of the lengths (stiff members, a stiff
+    tie), so statics on the reference geometry holds to that: tolerance 1e-5 of P."""
+    info = fmus("TiedFrame")
+    p, span, h = 1000.0, 6.0, 4.0
+    tie, pin_x, pin_y, roller_y = initial(info, ["tie_force", "pin_Rx", "pin_Ry", "roller_Ry"])
+    for what, got, want in [
+        ("tie", tie, p * span / (4.0 * h)),
+        ("pin Rx", pin_x, 0.0),
+        ("pin Ry", pin_y, p / 2.0),
+        ("roller Ry", roller_y, p / 2.0),
+    ]:
+        assert abs(got - want) < 1e-5 * p, f"{what}: {got} vs {want}"
 
 
 def test_a_mechanism_frame_is_refused_and_nothing_is_written(tmp_path: Path) -> None:

@@ -1,21 +1,24 @@
-"""The deformed rod over time, from an FMU's shape outputs (``shape_x[i]``, ``shape_y[i]``).
+"""The deformed rod or frame over time, from an FMU's shape outputs (``shape_x[i]``,
+``shape_y[i]``; on a frame ``points`` per member, member by member, each member drawn as its own
+line).
 
 :func:`record` runs the FMU from its initial state (communication step `step`, default: the FMU's
 default experiment) and samples the shape at `frames` equally spaced times, with its inputs
 constant or following a :class:`InputTable` (``--inputs FILE``); :func:`render` writes a GIF
 (matplotlib + Pillow) with the initial shape in grey, the scene's supports, springs, point loads
-and moving loads marked where they are in each frame (:mod:`georod_tools.report.marks`), the
-legend below the plot (it covers nothing), the time shown, and the factor by which the y axis is
-stretched when the motion is too flat to see in true proportions. The command is
-``georod-tools animate`` (:mod:`georod_tools.cli.animate`).
+and moving loads (and a frame's hinges and links) marked where they are in each frame
+(:mod:`georod_tools.report.marks`), the legend below the plot (it covers nothing), the time
+shown, and the factor by which the y axis is stretched when the motion is too flat to see in
+true proportions. The command is ``georod-tools animate`` (:mod:`georod_tools.cli.animate`).
 """
 
 from __future__ import annotations
 
+import math
 import re
 import tomllib
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -26,6 +29,8 @@ from georod_tools.report.marks import STYLES, Mark, marks, positions, resolver
 SHAPE = re.compile(r"shape_([xy])\[(\d+)\]$")
 #: The y axis is stretched when the motion's height is below this fraction of its width.
 FLAT = 0.15
+#: A frame's motion is magnified when it stays below this fraction of the frame's size.
+VISIBLE = 0.1
 
 
 @dataclass
@@ -76,7 +81,8 @@ class InputTable:
 
 @dataclass
 class Motion:
-    """Shape samples over time: ``x[k, i]``, ``y[k, i]`` at ``times[k]``."""
+    """Shape samples over time: ``x[k, i]``, ``y[k, i]`` at ``times[k]``, `pieces` pieces (the rod,
+    or a frame's members) of equally many samples one after the other."""
 
     name: str
     guid: str
@@ -90,6 +96,7 @@ class Motion:
     field: np.ndarray | None = None
     field_name: str = ""
     field_unit: str = ""
+    pieces: int = 1
 
 
 def field_outputs(model: object, name: str, points: int) -> list[str]:
@@ -167,6 +174,7 @@ def record(
     motion = Motion(
         model.identifier, model.guid, np.array(times), np.array(xs), np.array(ys), items, unit
     )
+    motion.pieces = max(1, len(scene.get("member", [])))
     if field is not None:
         motion.field = np.array(fs)
         motion.field_name = field
@@ -182,6 +190,7 @@ def figure(motion: Motion) -> tuple[Any, Callable[[int], tuple]]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    motion, magnification = magnified(motion)
     x, y = motion.x, motion.y
     width, height = max(np.ptp(x), 1e-12), max(np.ptp(y), 1e-12)
     fig, ax = plt.subplots(figsize=(8, 4.4), dpi=80)
@@ -194,28 +203,60 @@ def figure(motion: Motion) -> tuple[Any, Callable[[int], tuple]]:
     stretch = stretch_factor(fig, ax) if height < FLAT * width else 1.0
     if stretch == 1.0:
         ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel(f"x [{motion.unit}]")
+    ax.set_xlabel(
+        f"x [{motion.unit}]"
+        + (f"; motion magnified x{magnification:g}" if magnification != 1.0 else "")
+    )
     ax.set_ylabel(f"y [{motion.unit}]" + (f", stretched x{stretch:.3g}" if stretch != 1.0 else ""))
     ax.grid(alpha=0.3)
-    ax.plot(x[0], y[0], color="0.75", lw=1.5, label="initial state")
-    (line,) = ax.plot(x[0], y[0], color="C0", lw=2.5, label="deformed rod")
+    # Each piece its own line: NaN between pieces breaks the line where one member ends.
+    bx, by = broken(x, motion.pieces), broken(y, motion.pieces)
+    ax.plot(bx[0], by[0], color="0.75", lw=1.5, label="initial state")
+    (line,) = ax.plot(bx[0], by[0], color="C0", lw=2.5, label=shape_name(motion))
     colours = field_colours(fig, ax, motion)
     if colours is not None:
         line.set_visible(False)
     drawn_marks = MarkArtists(ax, motion)
     label = ax.set_title("")
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=3, fontsize="small")
+    # At the figure's foot: below an axes box shrunk to true proportions it stays clear of the
+    # x label.
+    ax.legend(
+        loc="lower center",
+        bbox_to_anchor=(0.5, 0.01),
+        bbox_transform=fig.transFigure,
+        ncol=3,
+        fontsize="small",
+    )
 
     def frame(k: int) -> tuple:
-        line.set_data(x[k], y[k])
+        line.set_data(bx[k], by[k])
         if colours is not None:
-            colours.set_segments(segments(x[k], y[k]))
-            colours.set_array(midpoints(motion.field[k]))  # type: ignore[index]
+            colours.set_segments(segments(x[k], y[k], motion.pieces))
+            colours.set_array(midpoints(motion.field[k], motion.pieces))  # type: ignore[index]
         label.set_text(f"{motion.name}: t = {motion.times[k]:.5f} s")
         drawn = (colours,) if colours is not None else ()
         return line, label, *drawn_marks.show(k), *drawn
 
     return fig, frame
+
+
+def magnified(motion: Motion) -> tuple[Motion, float]:
+    """A frame whose motion would not be seen at its true size (under :data:`VISIBLE` of the
+    frame's size) with its motion from the initial state magnified, by the factor (1, 2 or 5
+    times a power of ten) that brings it to about that size, and the factor. A rod keeps its
+    true motion (a flat one is drawn with its y axis stretched instead)."""
+    if motion.pieces == 1:
+        return motion, 1.0
+    dx, dy = motion.x - motion.x[:1], motion.y - motion.y[:1]
+    amplitude = float(np.max(np.hypot(dx, dy)))
+    size = max(float(np.ptp(motion.x[0])), float(np.ptp(motion.y[0])))
+    if amplitude == 0.0 or amplitude >= VISIBLE * size:
+        return motion, 1.0
+    wanted = VISIBLE * size / amplitude
+    decade = 10.0 ** math.floor(math.log10(wanted))
+    factor = max(f * decade for f in (1.0, 2.0, 5.0) if f * decade <= wanted)
+    shown = replace(motion, x=motion.x[:1] + factor * dx, y=motion.y[:1] + factor * dy)
+    return shown, factor
 
 
 def render(motion: Motion, out: Path, fps: int) -> Path:
@@ -239,7 +280,7 @@ class MarkArtists:
     item's name beside it, moved to where the items are in each frame."""
 
     def __init__(self, ax: Any, motion: Motion) -> None:
-        self.at = {id(m): positions(m, motion.x, motion.y) for m in motion.marks}
+        self.at = {id(m): positions(m, motion.x, motion.y, motion.pieces) for m in motion.marks}
         self.kinds: dict[str, list[Mark]] = {}
         for m in motion.marks:
             self.kinds.setdefault(m.kind, []).append(m)
@@ -247,12 +288,23 @@ class MarkArtists:
         for kind in self.kinds:
             style = STYLES[kind]
             (self.lines[kind],) = ax.plot(
-                [], [], style.marker, color=style.colour, ms=8, ls="none", label=style.legend
+                [],
+                [],
+                style.marker,
+                color=style.colour,
+                mfc=style.colour if style.filled else "white",
+                ms=8,
+                ls="--" if style.paired else "none",
+                label=style.legend,
             )
+        named: dict[tuple[str, str], Mark] = {}
+        for m in motion.marks:
+            # A link's name once, at its first end.
+            if STYLES[m.kind].named:
+                named.setdefault((m.kind, m.name), m)
         self.names = [
             (m, ax.annotate(m.name, (0.0, 0.0), textcoords="offset points", xytext=(4, -14)))
-            for m in motion.marks
-            if STYLES[m.kind].named
+            for m in named.values()
         ]
         self.show(0)
 
@@ -260,6 +312,11 @@ class MarkArtists:
         """Moves every item to frame k; returns the artists it changed."""
         for kind, items in self.kinds.items():
             points = np.array([self.at[id(m)][k] for m in items])
+            if STYLES[kind].paired:
+                # Pairs of ends, each pair a segment, NaN between pairs.
+                pairs = points.reshape(-1, 2, 2)
+                gaps = np.full((len(pairs), 1, 2), np.nan)
+                points = np.concatenate([pairs, gaps], axis=1).reshape(-1, 2)
             self.lines[kind].set_data(points[:, 0], points[:, 1])
         for m, name in self.names:
             xy = self.at[id(m)][k]
@@ -271,7 +328,9 @@ class MarkArtists:
 
 def support_positions(motion: Motion) -> np.ndarray:
     """Where each support is in each frame, ``(frames, supports, 2)``."""
-    found = [positions(m, motion.x, motion.y) for m in motion.marks if m.kind == "support"]
+    found = [
+        positions(m, motion.x, motion.y, motion.pieces) for m in motion.marks if m.kind == "support"
+    ]
     return np.stack(found, axis=1) if found else np.zeros((len(motion.times), 0, 2))
 
 
@@ -284,15 +343,31 @@ def stretch_factor(fig: object, ax: object) -> float:
     return float((box.height * fig_h / (y1 - y0)) / (box.width * fig_w / (x1 - x0)))
 
 
-def segments(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """The rod as segments between consecutive shape samples, ``(points - 1, 2, 2)``."""
-    p = np.column_stack([x, y])
-    return np.stack([p[:-1], p[1:]], axis=1)
+def shape_name(motion: Motion) -> str:
+    return "deformed frame" if motion.pieces > 1 else "deformed rod"
 
 
-def midpoints(values: np.ndarray) -> np.ndarray:
-    """A segment's colour value: the mean of its two samples."""
-    return 0.5 * (values[:-1] + values[1:])
+def broken(values: np.ndarray, pieces: int) -> np.ndarray:
+    """``(frames, samples)`` of `pieces` pieces with a NaN column between consecutive pieces."""
+    if pieces == 1:
+        return values
+    frames, samples = values.shape
+    split = values.reshape(frames, pieces, samples // pieces)
+    gaps = np.full((frames, pieces, 1), np.nan)
+    return np.concatenate([split, gaps], axis=2).reshape(frames, -1)[:, :-1]
+
+
+def segments(x: np.ndarray, y: np.ndarray, pieces: int = 1) -> np.ndarray:
+    """The shape as segments between consecutive samples of each piece,
+    ``(pieces (points - 1), 2, 2)``: no segment joins two pieces."""
+    p = np.column_stack([x, y]).reshape(pieces, -1, 2)
+    return np.stack([p[:, :-1], p[:, 1:]], axis=2).reshape(-1, 2, 2)
+
+
+def midpoints(values: np.ndarray, pieces: int = 1) -> np.ndarray:
+    """A segment's colour value: the mean of its two samples (within each piece)."""
+    v = values.reshape(pieces, -1)
+    return (0.5 * (v[:, :-1] + v[:, 1:])).reshape(-1)
 
 
 def field_colours(fig: object, ax: object, motion: Motion) -> object:
@@ -305,13 +380,13 @@ def field_colours(fig: object, ax: object, motion: Motion) -> object:
 
     bound = max(float(np.max(np.abs(motion.field))), 1e-300)
     colours = LineCollection(
-        segments(motion.x[0], motion.y[0]),
+        segments(motion.x[0], motion.y[0], motion.pieces),
         cmap="coolwarm",
         norm=Normalize(-bound, bound),
         linewidths=3.0,
-        label=f"deformed rod, coloured by {motion.field_name}",
+        label=f"{shape_name(motion)}, coloured by {motion.field_name}",
     )
-    colours.set_array(midpoints(motion.field[0]))
+    colours.set_array(midpoints(motion.field[0], motion.pieces))
     ax.add_collection(colours)  # type: ignore[attr-defined]
     unit = f" [{motion.field_unit}]" if motion.field_unit else ""
     fig.colorbar(colours, ax=ax, label=f"{motion.field_name}{unit}")  # type: ignore[attr-defined]
