@@ -132,6 +132,10 @@ pub enum OutputId {
     },
     /// The force of link `k`.
     LinkForce(usize),
+    /// The force of stop `k` on the structure (along its dof).
+    StopForce(usize),
+    /// The fraction of the last communication step that stop `k` spent in contact.
+    StopContact(usize),
     ShapeX(usize),
     ShapeY(usize),
     /// `[shape] fields` entry `field` at shape sample `point`.
@@ -365,6 +369,7 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
     }
     vars.extend(super::readouts::outputs(scene));
     vars.extend(frame_outputs(scene));
+    vars.extend(super::stops::outputs(scene));
     vars
 }
 

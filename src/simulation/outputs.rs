@@ -29,6 +29,13 @@ impl Simulation {
                 let first = self.setup.support_nodes.len() + self.setup.springs.len();
                 self.reactions()[first + k][0]
             }
+            OutputId::StopForce(k) | OutputId::StopContact(k) => {
+                let first = self.setup.support_nodes.len()
+                    + self.setup.springs.len()
+                    + self.setup.links.len();
+                let component = usize::from(matches!(id, OutputId::StopContact(_)));
+                self.reactions()[first + k][component]
+            }
             OutputId::SupportFrame { support, component } => {
                 let [rx, ry, _] = self.reactions()[support];
                 let a = self.setup.support_angles[support];

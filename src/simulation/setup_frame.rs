@@ -207,6 +207,7 @@ pub fn frame_setup(scene: &Scene, values: &ParamValues) -> Setup {
             dof: 3 * layout.node(s.at) + s.dof,
             k: s.k,
             c: s.c,
+            k3: s.k3,
             base: s.base,
         })
         .collect();

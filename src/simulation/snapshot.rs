@@ -191,7 +191,10 @@ impl Simulation {
         if let Some(l) = &s.lyapunov {
             let n = self.setup.structure.dofs();
             let blocks = l.du.chunks(n).chain(l.dv.chunks(n));
-            if blocks.into_iter().any(|x| ties.iter().any(|&(a, b)| x[a] != x[b])) {
+            if blocks
+                .into_iter()
+                .any(|x| ties.iter().any(|&(a, b)| x[a] != x[b]))
+            {
                 return bad("a tangent vector's member end differs from its joint".to_string());
             }
         }
@@ -218,6 +221,7 @@ impl Simulation {
         self.state.v.copy_from_slice(&s.velocities);
         self.inputs.copy_from_slice(&s.inputs);
         self.next_inputs.copy_from_slice(&s.inputs);
+        self.rest_cubic_bases();
         self.input_derivatives.fill(None);
         self.loads_stale = true;
         self.reactions.copy_from_slice(&s.reactions);
@@ -243,6 +247,7 @@ impl Simulation {
         self.state.copy_from(&self.initial);
         self.inputs.clone_from(&self.initial_inputs);
         self.next_inputs.clone_from(&self.inputs);
+        self.rest_cubic_bases();
         self.input_derivatives.fill(None);
         self.loads_stale = true;
         self.energy = EnergyLedger {

@@ -53,6 +53,7 @@ impl Structure {
             joints,
             axial,
             nodal,
+            nonlinear: super::Nonlinear::default(),
             dofs,
             slaves: ties.iter().map(|&(s, _)| s).collect(),
             ties,
