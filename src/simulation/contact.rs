@@ -5,7 +5,7 @@
 //! check that a softening spring has not passed the peak of its force.
 use super::setup::{MemberRole, Setup, SpringOnRod};
 use super::Simulation;
-use crate::model::structure::{CubicSpring, Nonlinear, Stop};
+use crate::model::structure::{CubicSpring, Stop};
 use crate::model::{Place, Structure};
 use crate::scene::{Scene, Station};
 
@@ -44,11 +44,8 @@ pub(super) fn attach(scene: &Scene, setup: &mut Setup) {
             base: [0.0; 2],
         })
         .collect();
-    setup.structure.nonlinear = Nonlinear {
-        stops,
-        cubic,
-        energy_momentum: false,
-    };
+    setup.structure.nonlinear.stops = stops;
+    setup.structure.nonlinear.cubic = cubic;
 }
 
 /// Where a spring's base is with the inputs at `inputs` (0 for a fixed base).
@@ -119,6 +116,47 @@ pub(super) fn explain_static_failure(scene: &Scene, setup: &Setup, why: String) 
         out += &format!(". A softening spring cannot carry more than its peak force: {limits}");
     }
     out
+}
+
+/// In a static state `u`: a joint of a frame that only cables hold (no rod or truss member,
+/// support, spring, stop or link there) whose cables are all slack: nothing holds it (its
+/// position is not determined), refused with the key of its first cable.
+pub(super) fn slack_joint(scene: &Scene, setup: &Setup, u: &[f64]) -> Option<String> {
+    let frame = scene.frame.as_ref()?;
+    let at = |j: usize, s: &Station| *s == Station::Joint(j);
+    (0..frame.joints.len()).find_map(|j| {
+        let members: Vec<usize> = (0..frame.members.len())
+            .filter(|&m| frame.members[m].from == j || frame.members[m].to == j)
+            .collect();
+        let held = scene.supports.iter().any(|s| at(j, &s.at))
+            || scene.springs.iter().any(|s| at(j, &s.at))
+            || scene.stops.iter().any(|s| at(j, &s.at))
+            || (frame.links.iter()).any(|l| l.ends.iter().any(|e| at(j, e)));
+        let slack = |m: usize| match setup.members[m] {
+            MemberRole::Bar(b) => {
+                let a = &setup.structure.axial[b];
+                a.tension_only && a.chord(u).norm() < a.rest * (1.0 - 1e-12)
+            }
+            MemberRole::Rod(_) => false,
+        };
+        if held || members.is_empty() || !members.iter().all(|&m| slack(m)) {
+            return None;
+        }
+        let names: Vec<&str> = members
+            .iter()
+            .map(|&m| frame.members[m].name.as_str())
+            .collect();
+        let first = members[0];
+        let key =
+            crate::scene::stops::entry_key("member", first, &frame.members[first].name, "kind");
+        Some(format!(
+            "{key}: in the static state every cable at joint `{}` ({}) is slack and nothing else \
+             holds the joint: a cable carries tension only (hold the joint with a rod or truss \
+             member, a support or a spring, or load it so that its cables pull)",
+            frame.joints[j].name,
+            names.join(", ")
+        ))
+    })
 }
 
 /// The most each softening spring of the scene can carry, for a static state that was not found.

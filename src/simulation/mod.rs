@@ -163,7 +163,9 @@ impl Simulation {
         let mut initial = DynamicState::at_rest(initial::initial_displacements(
             &scene, &values, &setup, &inputs,
         )?);
-        if let Some(why) = contact::past_peak(&scene, &setup.structure, &initial.u) {
+        let refused = contact::past_peak(&scene, &setup.structure, &initial.u)
+            .or_else(|| contact::slack_joint(&scene, &setup, &initial.u));
+        if let Some(why) = refused {
             return Err(SimError::InitialState(format!(
                 "the equilibrium reached is refused: {why}"
             )));

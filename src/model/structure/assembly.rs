@@ -513,15 +513,15 @@ impl Assembly for Structure {
     }
 
     fn crosses_kink(&self, u: &[f64], du: &[f64], c: &[f64], w: f64) -> bool {
-        self.nonlinear.crosses_kink(u, du, c, w)
+        self.kink_crossed(u, du, c, w)
     }
 
     fn add_static_regularization(&self, u: &[f64], jac: &mut StructureMatrix) {
-        self.nonlinear.add_static_regularization(u, jac);
+        self.regularize_statics(u, jac);
     }
 
     fn static_step_limit(&self, u: &[f64], delta: &[f64]) -> f64 {
-        self.nonlinear.static_step_limit(u, delta)
+        self.static_limit(u, delta)
     }
 
     fn strain_energy(&self, u: &[f64]) -> f64 {
