@@ -6,7 +6,8 @@
 //!   energy-momentum integrator the ledger closes to round-off through every tightening.
 //! - A joint hung on two cables: its equilibrium hanging and, pushed up, upside down; with its
 //!   cables slack and nothing else holding it, refused naming the cables.
-//! - Stops on a frame (at a joint and on a member), on the same beam.
+//! - Stops on a frame (at a joint and on a member) and a hardening spring at a joint, on the
+//!   same beam.
 //!
 //! Run: `cargo test --profile quick --test contact_cables -- --nocapture`
 mod common;
@@ -293,4 +294,32 @@ quantity = "u2"
         assert_eq!(output(&sim, "under_M_contact"), 1.0);
         sim.advance(1e-4).expect("a step at rest");
     }
+}
+
+/// A hardening spring at a frame's joint (the beam without its stay, a spring under M with
+/// `k3`): in the static state its force output is `-(k u + k3 u^3)` at M's deflection, and the
+/// supports and the spring balance the load.
+#[test]
+fn a_cubic_spring_at_a_frame_joint() {
+    let spring = r#"
+[[spring]]
+name = "bearing"
+joint = "M"
+dof = "u2"
+k = 1e5
+k3 = 1e15
+"#;
+    let sim = simulation_of(&(stayed_beam(false, 20000.0, "") + spring), &[]);
+    let u = output(&sim, "mid");
+    let force = output(&sim, "bearing_force");
+    let law = -(1e5 * u + 1e15 * u * u * u);
+    let supports = output(&sim, "pin_Ry") + output(&sim, "roller_Ry");
+    println!(
+        "M at {u:.6e} m: spring {force:.6} N (k u + k3 u^3: {law:.6} N, the cubic part {:.6} N), \
+         supports {supports:.6} N",
+        -1e15 * u * u * u
+    );
+    assert!((force - law).abs() < 1e-12 * law.abs());
+    assert!(-1e15 * u * u * u > 0.1 * force, "the cubic part matters");
+    assert!((force + supports - 20000.0).abs() < 1e-6, "equilibrium");
 }

@@ -8,23 +8,13 @@
 //! Run: `cargo test --profile quick --test contact_energy -- --nocapture`
 mod common;
 
+use common::contact::impacting_cantilever;
 use common::output;
 use georod::simulation::Simulation;
 
 /// The example with `d = 0`, the energy-momentum scheme and the stop's dashpot `c`.
 fn cantilever(c: f64) -> Simulation {
-    let path = format!(
-        "{}/examples/ImpactingCantilever.toml",
-        env!("CARGO_MANIFEST_DIR")
-    );
-    let text = std::fs::read_to_string(path).expect("the example");
-    assert!(text.contains("c = 0.0 "), "the example's stop has c = 0.0");
-    let text = text.replace("c = 0.0 ", &format!("c = {c} "));
-    let scene = georod::scene::Scene::parse(&text, "ImpactingCantilever.toml").unwrap();
-    let values = scene
-        .values_with([("d", 0.0), ("integrator", 2.0), ("F", 2.0)])
-        .unwrap();
-    Simulation::new(std::sync::Arc::new(scene), values).unwrap()
+    impacting_cantilever(&[("d", 0.0), ("integrator", 2.0), ("F", 2.0)], c).unwrap()
 }
 
 /// Steps of 1 ms until ten impacts (a step that touches after one that did not): the largest

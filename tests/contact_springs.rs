@@ -9,7 +9,7 @@
 //! Run: `cargo test --profile quick --test contact_springs -- --nocapture`
 mod common;
 
-use common::heave::release;
+use common::contact::release;
 use common::{output, set_input, simulation_of};
 use georod::simulation::Simulation;
 use std::f64::consts::PI;

@@ -15,7 +15,7 @@
 //! Run: `cargo test --profile quick --test contact_stops -- --nocapture`
 mod common;
 
-use common::heave::{mean_period, release, up_crossings};
+use common::contact::{mean_period, release, up_crossings};
 use common::{output, simulation_of};
 use georod::simulation::Simulation;
 use std::f64::consts::PI;

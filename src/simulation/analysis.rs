@@ -82,7 +82,10 @@ impl Analysis {
             return Err(refuse(
                 LYAPUNOV,
                 format!(
-                    "{k} exponents: stop `{}` has a contact dashpot (c = {}), whose force                      depends on the state and the step together; the tangent map does not                      include it (docs/model.md, section 14). Set its c = 0 (a penalty stop                      without a dashpot, Rayleigh or viscous damping elsewhere) for exponents",
+                    "{k} exponents: stop `{}` has a contact dashpot (c = {}), whose force \
+                     depends on the state and the step together; the tangent map does not \
+                     include it (docs/model.md, section 14). Set its c = 0 (a penalty stop \
+                     without a dashpot; damp with d or [damping] instead) for exponents",
                     stop.name, stop.c
                 ),
             )

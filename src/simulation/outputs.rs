@@ -33,8 +33,11 @@ impl Simulation {
                 let first = self.setup.support_nodes.len()
                     + self.setup.springs.len()
                     + self.setup.links.len();
-                let component = usize::from(matches!(id, OutputId::StopContact(_)));
-                self.reactions()[first + k][component]
+                match id {
+                    OutputId::StopForce(_) => self.reactions()[first + k][0],
+                    // A sum of sub-step fractions over the step: round-off may pass 1.
+                    _ => self.reactions()[first + k][1].clamp(0.0, 1.0),
+                }
             }
             OutputId::SupportFrame { support, component } => {
                 let [rx, ry, _] = self.reactions()[support];

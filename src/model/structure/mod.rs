@@ -20,6 +20,7 @@
 mod assembly;
 mod axial;
 mod graph;
+mod kinks;
 mod matrix;
 pub mod nonlinear;
 mod points;
