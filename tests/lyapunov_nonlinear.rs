@@ -119,46 +119,24 @@ fn snapshots_carry_the_tangent_vectors() {
     assert_eq!(lyapunov_exponents(&sim, 3), first);
 }
 
-/// The largest exponent per forcing period by two trajectories (Benettin): the twin starts
-/// `d0` away along the tangent vector's initial direction and is pulled back to `d0` every
-/// period along its separation (through snapshots), in the same norm `|du|^2 + |dv/Omega|^2`
-/// over the free dofs.
+/// The largest exponent per forcing period by two trajectories (Benettin, see
+/// `common::contact::twin_exponent`: the twin starts `d0` away along the tangent vector's
+/// initial direction and is pulled back to `d0` every period, in the same norm
+/// `|du|^2 + |dv/Omega|^2` over the free dofs), and the core's estimate.
 fn twin_exponent(f: f64, omega: f64, periods: usize, skip: usize) -> (f64, f64) {
     let period = 2.0 * std::f64::consts::PI / omega;
-    let d0 = 1e-8;
     let mut reference = buckled(f, omega, 1.0, skip as f64 * period);
     let mut twin = buckled(f, omega, 1.0, skip as f64 * period);
     let free: Vec<usize> = free_dofs(reference.rod());
-    let start = reference.snapshot();
-    let direction = start.lyapunov.clone().unwrap();
-    let place = |twin: &mut Simulation, reference: &Simulation, du: &[f64], dv: &[f64], scale| {
-        let mut s = reference.snapshot();
-        for &i in &free {
-            s.displacements[i] += scale * du[i];
-            s.velocities[i] += scale * dv[i];
-        }
-        twin.restore(&s).unwrap();
-    };
-    place(&mut twin, &reference, &direction.du, &direction.dv, d0);
-    let mut growth = 0.0;
-    for p in 0..periods {
-        reference.advance(period).unwrap();
-        twin.advance(period).unwrap();
-        let (r, t) = (reference.state(), twin.state());
-        let du: Vec<f64> = (0..r.u.len()).map(|i| t.u[i] - r.u[i]).collect();
-        let dv: Vec<f64> = (0..r.v.len()).map(|i| t.v[i] - r.v[i]).collect();
-        let d = free
-            .iter()
-            .map(|&i| du[i] * du[i] + (dv[i] / omega).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        if p >= skip {
-            growth += (d / d0).ln();
-        }
-        place(&mut twin, &reference, &du, &dv, d0 / d);
-    }
-    let twin_estimate = growth / (periods - skip) as f64;
-    (twin_estimate, output(&reference, "lyapunov_per_period[1]"))
+    let estimate = common::contact::twin_exponent(
+        &mut reference,
+        &mut twin,
+        &free,
+        omega,
+        (periods, skip),
+        1e-8,
+    );
+    (estimate, output(&reference, "lyapunov_per_period[1]"))
 }
 
 #[test]

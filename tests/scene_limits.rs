@@ -199,7 +199,9 @@ fn a_scene_at_every_maximum_has_unique_value_references_inside_their_blocks() {
             Role::Output(OutputId::SpringForce(_)) => 1_000_000..1_100_000,
             Role::Output(OutputId::SupportFrame { .. }) => 1_100_000..1_200_000,
             Role::Output(OutputId::BarForce { .. }) => 1_200_000..1_300_000,
-            Role::Output(OutputId::LinkForce(_)) => 1_300_000..u32::MAX,
+            Role::Output(OutputId::LinkForce(_)) => 1_300_000..1_400_000,
+            Role::Output(OutputId::StopForce(_)) => 1_400_000..1_500_000,
+            Role::Output(OutputId::StopContact(_)) => 1_500_000..u32::MAX,
         };
         assert!(
             range.contains(&v.vr),

@@ -48,10 +48,11 @@ impl<A: Assembly> StaticSolver<A> {
         loop {
             self.jac.set_zero();
             rod.internal_force_and_tangent(u, &mut self.residual, &mut self.jac, 1.0);
+            rod.add_static_regularization(u, &mut self.jac);
             for (r, f) in self.residual.iter_mut().zip(f_ext) {
                 *r -= f;
             }
-            let (residual_norm, correction) = newton_correction(
+            let (residual_norm, mut correction) = newton_correction(
                 rod,
                 &mut self.jac,
                 &mut self.residual,
@@ -59,6 +60,12 @@ impl<A: Assembly> StaticSolver<A> {
                 stats.iterations,
                 Factorization::General,
             )?;
+            // A correction that closes an open stop or a slack cable stops just past it.
+            let limit = rod.static_step_limit(u, &self.residual);
+            if limit < 1.0 {
+                self.residual.iter_mut().for_each(|d| *d *= limit);
+                correction *= limit;
+            }
             for (x, d) in u.iter_mut().zip(&self.residual) {
                 *x += d;
             }
@@ -67,7 +74,7 @@ impl<A: Assembly> StaticSolver<A> {
                 .iter()
                 .zip(&self.start)
                 .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-            if self.settings.converged(correction, moved) {
+            if limit == 1.0 && self.settings.converged(correction, moved) {
                 return Ok(stats);
             }
             if stats.iterations >= self.settings.max_iterations || !correction.is_finite() {

@@ -144,6 +144,26 @@ pub trait Assembly {
         0.0
     }
 
+    /// Whether it has forces with a kink (stops, cables: the stiffness jumps where they touch or
+    /// tighten): [`Assembly::crosses_kink`].
+    fn has_kinks(&self) -> bool {
+        false
+    }
+    /// Whether such a force is on the other side of its kink at `u + w du` than at
+    /// `u + w (du - c)` (the iterates after and before a Newton correction `c`): the
+    /// correction's error is then not estimated from the contraction of the corrections.
+    fn crosses_kink(&self, _u: &[f64], _du: &[f64], _c: &[f64], _w: f64) -> bool {
+        false
+    }
+    /// Adds to a static Newton iteration's Jacobian at `u` a small stiffness of the open stops
+    /// and slack cables (the residual keeps none): a part held only by them stays regular.
+    fn add_static_regularization(&self, _u: &[f64], _jac: &mut Self::Matrix) {}
+    /// The fraction of a static Newton correction `delta` from `u` to take: up to just past the
+    /// first open stop or slack cable it closes (1 when none).
+    fn static_step_limit(&self, _u: &[f64], _delta: &[f64]) -> f64 {
+        1.0
+    }
+
     /// The stored energy (elements and attachments).
     fn strain_energy(&self, u: &[f64]) -> f64;
     /// `v^T M v / 2`.

@@ -3,6 +3,7 @@
 pub mod assembly;
 pub mod attachments;
 pub mod bands;
+pub mod contact;
 pub mod element;
 pub mod geometry;
 pub mod loads;

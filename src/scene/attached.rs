@@ -23,6 +23,8 @@ pub struct Spring {
     pub dof: usize,
     pub k: f64,
     pub c: f64,
+    /// The cubic part of its force `k u + k3 u^3` (0: a linear spring; < 0: softening).
+    pub k3: f64,
     /// The FMI input its base follows (`motion = "input"`); without one the base is fixed.
     pub base: Option<usize>,
 }
@@ -41,7 +43,7 @@ pub struct Foundation {
 }
 
 /// A number `>= 0` (`what` says what it is), or its default when absent.
-fn non_negative(
+pub(super) fn non_negative(
     c: &Checker,
     x: Option<f64>,
     default: Option<f64>,
@@ -128,6 +130,12 @@ pub(super) fn springs(
                 dof,
                 k: non_negative(c, s.k, None, &key("k"), "the stiffness (N/m, N.m/rad on w)")?,
                 c: non_negative(c, s.c, Some(0.0), &key("c"), "")?,
+                k3: match s.k3 {
+                    Some(x) if !x.is_finite() => {
+                        return c.err(key("k3"), format!("{x} is not a finite number"))
+                    }
+                    x => x.unwrap_or(0.0),
+                },
                 base,
             })
         })

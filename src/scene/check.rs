@@ -90,6 +90,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     let loads = items::loads(&c, &raw.load, &mut params, frame_ref, &mut inputs)?;
     // Spring bases' inputs after the loads': earlier scenes keep their value references.
     let springs = attached::springs(&c, &raw.spring, &supports, frame_ref, &mut inputs)?;
+    let stops = super::stops::stops(&c, &raw.stop, &supports, frame_ref)?;
     items::label_amplitude(&loads, &mut params);
     let sensors = raw
         .sensor
@@ -137,6 +138,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         masses: attached::masses(&c, &raw.mass, frame_ref)?,
         springs,
         foundations: attached::foundations(&c, &raw.foundation, frame_ref)?,
+        stops,
         frame,
         source: text.to_string(),
     };

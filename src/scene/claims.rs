@@ -4,6 +4,7 @@
 //! that makes it.
 use super::checker::{entry, item};
 use super::params::SCENE_PARAM_VR;
+use super::stops::{STOP_CONTACT_VR, STOP_FORCE_VR};
 use super::variables::{
     INPUT_VR, MAX_INPUTS, MAX_SCENE_PARAMS, MAX_SENSORS, MAX_SUPPORTS, REACTION_SUFFIXES,
     REACTION_VR, SENSOR_VR, SHAPE_X_VR, STANDARD_OUTPUTS,
@@ -51,6 +52,14 @@ pub fn check_names(scene: &Scene) -> Result<(), (String, String)> {
         if !matches!(l.time, super::TimeLaw::Input(_)) {
             // Only input loads become variables, but a load name is still one name.
             claim(l.name.clone(), format!("[[load]] {}", l.name))?;
+        }
+    }
+    for s in &scene.stops {
+        for suffix in ["force", "contact"] {
+            claim(
+                format!("{}_{suffix}", s.name),
+                format!("the outputs of [[stop]] {}", s.name),
+            )?;
         }
     }
     for n in ["shape_x", "shape_y"] {
@@ -125,6 +134,18 @@ pub fn check_blocks(scene: &Scene) -> Result<(), (String, String)> {
                     "value references {SENSOR_VR}-{}; the support reactions start at {REACTION_VR}",
                     REACTION_VR - 1
                 ),
+            ),
+        ));
+    }
+    let max_stops = (STOP_CONTACT_VR - STOP_FORCE_VR) as usize;
+    if let Some(stop) = scene.stops.get(max_stops) {
+        return Err((
+            item("stop", max_stops, Some(&stop.name)),
+            over(
+                scene.stops.len(),
+                max_stops,
+                "[[stop]] entries",
+                format!("value references {STOP_FORCE_VR}-{}", STOP_CONTACT_VR - 1),
             ),
         ));
     }

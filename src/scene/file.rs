@@ -35,6 +35,8 @@ pub struct SceneFile {
     #[serde(default)]
     pub foundation: Vec<FoundationFile>,
     #[serde(default)]
+    pub stop: Vec<StopFile>,
+    #[serde(default)]
     pub joint: Vec<JointFile>,
     #[serde(default)]
     pub member: Vec<MemberFile>,
@@ -109,6 +111,22 @@ pub struct SpringFile {
     pub k: Option<f64>,
     pub c: Option<f64>,
     pub motion: Option<String>,
+    pub k3: Option<f64>,
+}
+
+/// A one-sided support (`docs/scenes.md`, `[[stop]]`).
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct StopFile {
+    pub name: Option<String>,
+    pub at: Option<f64>,
+    pub joint: Option<String>,
+    pub member: Option<String>,
+    pub dof: Option<String>,
+    pub side: Option<String>,
+    pub gap: Option<f64>,
+    pub k: Option<f64>,
+    pub c: Option<f64>,
 }
 
 #[derive(Deserialize, Debug)]

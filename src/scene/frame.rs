@@ -45,6 +45,8 @@ pub struct Member {
     /// Hinged at its `from` end, at its `to` end.
     pub hinges: [bool; 2],
     pub kind: MemberKind,
+    /// A truss member that carries tension only (`kind = "cable"`: `kind` is then `Truss`).
+    pub cable: bool,
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -274,11 +276,13 @@ fn member(c: &Checker, i: usize, m: &MemberFile, frame: &Frame) -> Result<Member
             "a member joins two different joints (this one has zero length)",
         );
     }
-    let kind = match m.kind.as_deref() {
-        None => MemberKind::Rod,
-        Some(k) => {
-            [MemberKind::Rod, MemberKind::Truss][c.one_of(k, &["rod", "truss"], &key("kind"))?]
-        }
+    let (kind, cable) = match m.kind.as_deref() {
+        None => (MemberKind::Rod, false),
+        Some(k) => match c.one_of(k, &["rod", "truss", "cable"], &key("kind"))? {
+            0 => (MemberKind::Rod, false),
+            1 => (MemberKind::Truss, false),
+            _ => (MemberKind::Truss, true),
+        },
     };
     let shape = match m.shape.as_deref() {
         None | Some("straight") if m.rise.is_some() => {
@@ -362,6 +366,7 @@ fn member(c: &Checker, i: usize, m: &MemberFile, frame: &Frame) -> Result<Member
         section,
         hinges,
         kind,
+        cable,
     })
 }
 

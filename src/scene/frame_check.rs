@@ -346,6 +346,12 @@ impl Linear {
                 self.k[(d, d)] += 1.0 / size;
             }
         }
+        // A stop restrains where the static state presses on it (else the static solve says so).
+        for s in &scene.stops {
+            if let Some(d) = self.station_dofs(&s.at)[s.dof] {
+                self.k[(d, d)] += 1.0 / size;
+            }
+        }
         for f in scene.foundations.iter().filter(|f| f.k > 0.0) {
             for (dofs, at, _) in self.nodes[f.member].clone() {
                 if at >= f.from - 1e-12 && at <= f.to + 1e-12 {

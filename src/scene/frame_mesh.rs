@@ -16,6 +16,7 @@ impl Scene {
         let supports = self.supports.iter().filter_map(|s| on(&s.at));
         let masses = self.masses.iter().filter_map(|x| on(&x.at));
         let springs = self.springs.iter().filter_map(|s| on(&s.at));
+        let stops = self.stops.iter().filter_map(|s| on(&s.at));
         let foundations = (self.foundations.iter())
             .filter(|f| f.member == m)
             .flat_map(|f| [f.from, f.to]);
@@ -26,6 +27,7 @@ impl Scene {
             supports
                 .chain(masses)
                 .chain(springs)
+                .chain(stops)
                 .chain(foundations)
                 .chain(links),
         )
@@ -68,10 +70,10 @@ impl Scene {
     }
 
     /// How many reaction-like outputs a simulation books (a state carries them): one per
-    /// support, then per spring, then per link.
+    /// support, then per spring, then per link, then per stop.
     pub fn reaction_slots(&self) -> usize {
         let links = self.frame.as_ref().map_or(0, |f| f.links.len());
-        self.supports.len() + self.springs.len() + links
+        self.supports.len() + self.springs.len() + links + self.stops.len()
     }
 
     /// The element count of each member for `elements` (a truss member: 0, it is one bar):

@@ -48,8 +48,14 @@ pub(super) fn frame_outputs(scene: &Scene) -> Vec<Variable> {
                 BAR_FORCE_VR + 2 * m as u32 + end as u32,
                 Some("N"),
                 format!(
-                    "Normal force of truss member {} at its {suffix} (tension positive)",
-                    member.name
+                    "Normal force of {} {} at its {suffix} (tension positive{})",
+                    if member.cable {
+                        "cable"
+                    } else {
+                        "truss member"
+                    },
+                    member.name,
+                    if member.cable { "; 0 while slack" } else { "" }
                 ),
                 OutputId::BarForce { member: m, end },
             ));

@@ -23,6 +23,8 @@ pub(super) fn free_rigid_motion(
     }
     let springs = scene.springs.iter().filter(|s| s.k > 0.0);
     held.extend(springs.map(|s| (s.at.fraction(), s.dof)));
+    // A stop restrains where the static state presses on it (else the static solve says so).
+    held.extend(scene.stops.iter().map(|s| (s.at.fraction(), s.dof)));
     let foundations = scene.foundations.iter().filter(|f| f.k > 0.0);
     held.extend(foundations.flat_map(|f| [(f.from, 1), (f.to, 1)]));
     for (at, k) in held {

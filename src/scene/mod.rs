@@ -22,6 +22,7 @@ pub mod params;
 pub mod quantity;
 pub mod readouts;
 pub mod sections;
+pub mod stops;
 mod syntax;
 pub mod variable_kinds;
 pub mod variables;
@@ -294,6 +295,8 @@ pub struct Scene {
     pub masses: Vec<attached::PointMass>,
     pub springs: Vec<attached::Spring>,
     pub foundations: Vec<attached::Foundation>,
+    /// One-sided supports (`[[stop]]`).
+    pub stops: Vec<stops::Stop>,
     /// The joints, members and links of a frame (`None`: one rod, `[geometry]`).
     pub frame: Option<frame::Frame>,
     /// The file's text, exactly as read (what an FMU carries in `resources/`).

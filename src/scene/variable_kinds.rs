@@ -131,6 +131,10 @@ pub enum OutputId {
     },
     /// The force of link `k`.
     LinkForce(usize),
+    /// The force of stop `k` on the structure (along its dof).
+    StopForce(usize),
+    /// The fraction of the last communication step that stop `k` spent in contact.
+    StopContact(usize),
     ShapeX(usize),
     ShapeY(usize),
     /// `[shape] fields` entry `field` at shape sample `point`.

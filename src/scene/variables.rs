@@ -152,6 +152,7 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
     }
     vars.extend(field_outputs(scene));
     vars.extend(super::frame_outputs::frame_outputs(scene));
+    vars.extend(super::stops::outputs(scene));
     vars
 }
 

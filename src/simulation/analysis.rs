@@ -78,6 +78,19 @@ impl Analysis {
             )
             .into());
         }
+        if let Some(stop) = scene.stops.iter().find(|s| s.c > 0.0).filter(|_| k > 0) {
+            return Err(refuse(
+                LYAPUNOV,
+                format!(
+                    "{k} exponents: stop `{}` has a contact dashpot (c = {}), whose force \
+                     depends on the state and the step together; the tangent map does not \
+                     include it (docs/model.md, section 14). Set its c = 0 (a penalty stop \
+                     without a dashpot; damp with d or [damping] instead) for exponents",
+                    stop.name, stop.c
+                ),
+            )
+            .into());
+        }
         if k > 2 * free {
             return Err(refuse(
                 LYAPUNOV,

@@ -45,8 +45,10 @@ pub fn initial_displacements(
     super::springs::add_static_base_forces(&setup.springs, inputs, &mut constant);
     let fail = |what: &str, e: String| SimError::InitialState(format!("{what}: {e}"));
     let mut solver = StaticSolver::new(rod);
-    ramp(&mut solver, setup, &mut u, &constant, &targets)
-        .map_err(|e| fail("static equilibrium under the constant loads", e))?;
+    ramp(&mut solver, setup, &mut u, &constant, &targets).map_err(|e| {
+        let e = super::contact::explain_static_failure(scene, setup, e);
+        fail("static equilibrium under the constant loads", e)
+    })?;
     let Some(branch) = scene.initial.branch else {
         return Ok(u);
     };

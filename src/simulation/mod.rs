@@ -15,6 +15,7 @@
 //! This file holds [`Simulation`] itself: building it, its accessors, and what the host sets
 //! (inputs, their derivatives, tunable parameters).
 mod analysis;
+mod contact;
 pub mod initial;
 mod links;
 pub mod outputs;
@@ -154,6 +155,7 @@ impl Simulation {
             )));
         }
         let mut setup = setup::setup(&scene, &values);
+        contact::rest_bases(&mut setup.structure, &setup.springs, &inputs);
         let mut magnitudes = vec![0.0; setup.loads.len()];
         setup::load_magnitudes(&scene, &values, &inputs, &mut magnitudes);
         setup.loads.set_magnitudes(&magnitudes);
@@ -161,6 +163,13 @@ impl Simulation {
         let mut initial = DynamicState::at_rest(initial::initial_displacements(
             &scene, &values, &setup, &inputs,
         )?);
+        let refused = contact::past_peak(&scene, &setup.structure, &initial.u)
+            .or_else(|| contact::slack_joint(&scene, &setup, &initial.u));
+        if let Some(why) = refused {
+            return Err(SimError::InitialState(format!(
+                "the equilibrium reached is refused: {why}"
+            )));
+        }
         if let Some(r) = scene.rayleigh {
             // K0: the tangent of the initial static state, a constant matrix.
             setup.structure.with_rayleigh(r.alpha, r.beta, &initial.u);
@@ -176,6 +185,7 @@ impl Simulation {
         } else {
             Scheme::Midpoint
         };
+        (setup.structure).set_energy_momentum(integrator.scheme == Scheme::EnergyMomentum);
         let analysis =
             analysis::Analysis::new(&scene, &values, &setup, integrator.scheme, &mut initial)?;
         integrator.reserve_tangents(analysis.vectors(), &setup.structure);

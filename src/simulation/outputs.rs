@@ -29,6 +29,16 @@ impl Simulation {
                 let first = self.setup.support_nodes.len() + self.setup.springs.len();
                 self.reactions()[first + k][0]
             }
+            OutputId::StopForce(k) | OutputId::StopContact(k) => {
+                let first = self.setup.support_nodes.len()
+                    + self.setup.springs.len()
+                    + self.setup.links.len();
+                match id {
+                    OutputId::StopForce(_) => self.reactions()[first + k][0],
+                    // A sum of sub-step fractions over the step: round-off may pass 1.
+                    _ => self.reactions()[first + k][1].clamp(0.0, 1.0),
+                }
+            }
             OutputId::SupportFrame { support, component } => {
                 let [rx, ry, _] = self.reactions()[support];
                 let a = self.setup.support_angles[support];

@@ -84,6 +84,8 @@ pub struct SpringOnRod {
     pub dof: usize,
     pub k: f64,
     pub c: f64,
+    /// The cubic part of its force, `k3 (u - b)^3` (0: linear).
+    pub k3: f64,
     /// The FMI input its base follows; `None`: the base stays at 0.
     pub base: Option<usize>,
 }
@@ -121,10 +123,12 @@ pub fn scene_section(scene: &Scene, values: &ParamValues) -> Section {
 
 /// Meshes the scene. The values must have passed [`Scene::check`] (enough elements).
 pub fn setup(scene: &Scene, values: &ParamValues) -> Setup {
-    match scene.frame {
+    let mut setup = match scene.frame {
         None => rod_setup(scene, values),
         Some(_) => super::setup_frame::frame_setup(scene, values),
-    }
+    };
+    super::contact::attach(scene, &mut setup);
+    setup
 }
 
 /// A scene without joints: its rod.
@@ -166,6 +170,7 @@ fn rod_setup(scene: &Scene, values: &ParamValues) -> Setup {
             dof: 3 * rod.node_at(s.at.fraction() * length) + s.dof,
             k: s.k,
             c: s.c,
+            k3: s.k3,
             base: s.base,
         })
         .collect();

@@ -114,13 +114,14 @@ pub fn frame_setup(scene: &Scene, values: &ParamValues) -> Setup {
                 frame.joints[member.from].position,
                 frame.joints[member.to].position,
             ];
-            bars.push(Axial::bar(
+            let bar = Axial::bar(
                 [member.from, member.to],
                 reference,
                 section.ea,
                 section.rho_a,
                 damping,
-            ));
+            );
+            bars.push(if member.cable { bar.cable() } else { bar });
             continue;
         }
         let (curve, placement) = member.curve(&frame.joints);
@@ -207,6 +208,7 @@ pub fn frame_setup(scene: &Scene, values: &ParamValues) -> Setup {
             dof: 3 * layout.node(s.at) + s.dof,
             k: s.k,
             c: s.c,
+            k3: s.k3,
             base: s.base,
         })
         .collect();

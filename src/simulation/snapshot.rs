@@ -221,6 +221,7 @@ impl Simulation {
         self.state.v.copy_from_slice(&s.velocities);
         self.inputs.copy_from_slice(&s.inputs);
         self.next_inputs.copy_from_slice(&s.inputs);
+        self.rest_cubic_bases();
         self.input_derivatives.fill(None);
         self.loads_stale = true;
         self.reactions.copy_from_slice(&s.reactions);
@@ -246,6 +247,7 @@ impl Simulation {
         self.state.copy_from(&self.initial);
         self.inputs.clone_from(&self.initial_inputs);
         self.next_inputs.clone_from(&self.inputs);
+        self.rest_cubic_bases();
         self.input_derivatives.fill(None);
         self.loads_stale = true;
         self.energy = EnergyLedger {

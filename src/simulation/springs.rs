@@ -11,6 +11,8 @@
 //! work exactly, so `energy_error` stays what the rod alone makes it.
 use super::setup::SpringOnRod;
 use super::Simulation;
+use crate::integrator::Scheme;
+use crate::model::contact::{cubic_force, cubic_gradient};
 
 /// Where the base of `spring` is after the fraction `f` (0..=1) of a step that moves it from
 /// its input in `from` to its input in `to` (a fixed base stays at 0).
@@ -31,6 +33,14 @@ pub fn static_forces<'a>(
 ) -> impl Iterator<Item = [f64; 3]> + 'a {
     springs.iter().map(|s| {
         let b = base_at(s, inputs, inputs, 1.0);
+        let r = u[s.dof] - b;
+        if s.k3 != 0.0 {
+            return [
+                -(s.k * r + crate::model::contact::cubic_force(s.k3, r)),
+                0.0,
+                0.0,
+            ];
+        }
         [-s.k * (u[s.dof] - b), 0.0, 0.0]
     })
 }
@@ -75,13 +85,24 @@ impl Simulation {
         let first = self.setup.support_nodes.len();
         let du = self.integrator.last_increment();
         let (u, ledger) = (&self.trial.u, &mut self.trial_energy);
+        let scheme = self.integrator.scheme;
         let impulses = &mut self.trial_impulses[first..];
         for (j, s) in impulses.iter_mut().zip(&self.setup.springs) {
             let at = |j: usize| base_at(s, &self.inputs, &self.next_inputs, j as f64 / n as f64);
             let (start, end) = (at(k), at(k + 1));
             let (db, b_mid) = (end - start, 0.5 * (start + end));
             let (d, u_mid) = (du[s.dof], u[s.dof] - 0.5 * du[s.dof]);
-            let impulse = s.k * (u_mid - b_mid) * dt + s.c * (d - db);
+            let mut impulse = s.k * (u_mid - b_mid) * dt + s.c * (d - db);
+            if s.k3 != 0.0 {
+                // The cubic part as the step applied it (at the midpoint, or its gradient).
+                let f = match scheme {
+                    Scheme::Midpoint => cubic_force(s.k3, u_mid - b_mid),
+                    Scheme::EnergyMomentum => {
+                        cubic_gradient(s.k3, u[s.dof] - d - start, u[s.dof] - end)
+                    }
+                };
+                impulse += f * dt;
+            }
             j[0] -= impulse;
             if s.base.is_some() {
                 ledger.support_work -= impulse / dt * db;

@@ -103,6 +103,7 @@ impl Simulation {
                     self.clock.count += substeps as u64;
                     self.last_newton_iterations = newton_iterations;
                     self.inputs.copy_from_slice(&self.next_inputs);
+                    self.rest_cubic_bases();
                     if self.input_derivatives.iter().any(Option::is_some) {
                         self.input_derivatives.fill(None);
                         self.loads_stale = true;
@@ -120,6 +121,7 @@ impl Simulation {
                 }
                 Err(why) => last_failure = Some(why),
             }
+            self.rest_cubic_bases();
             substeps = substeps.saturating_mul(2);
             if substeps > MAX_SUBSTEPS {
                 break;
@@ -156,6 +158,7 @@ impl Simulation {
             let t_k = clock.at(k as u64);
             self.motion_increments(k, substeps);
             self.set_base_forces(k, substeps, dt);
+            self.set_cubic_bases(k, substeps);
             self.interpolate_load_inputs((k as f64 + 0.5) * dt);
             if k + 1 == substeps {
                 self.readouts.before_last_substep(&self.trial.v);
@@ -180,6 +183,8 @@ impl Simulation {
             self.book(t_k + 0.5 * dt, dt);
             self.book_springs(k, substeps, dt);
             self.book_links(dt);
+            self.book_stops(dt);
+            self.check_softening()?;
         }
         self.readouts.after_last_substep(&self.trial.v, dt);
         // Moving supports end the step exactly at their targets (not a sum of increments).

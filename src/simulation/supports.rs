@@ -177,7 +177,8 @@ pub fn static_reactions(setup: &Setup, u: &[f64], inputs: &[f64]) -> Vec<[f64; 3
     });
     let springs = super::springs::static_forces(&setup.springs, u, inputs);
     let links = super::links::static_forces(&setup.structure, &setup.links, u);
-    supports.chain(springs).chain(links).collect()
+    let stops = super::contact::static_forces(&setup.structure, u);
+    supports.chain(springs).chain(links).chain(stops).collect()
 }
 
 impl Simulation {

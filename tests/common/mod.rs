@@ -4,6 +4,7 @@
 //! the adapters to the scene layer used by the tests (see [`simulation`]).
 #![allow(dead_code)]
 
+pub mod contact;
 pub mod linear_frame;
 pub mod moving;
 

@@ -201,6 +201,8 @@ impl<A: Assembly> Midpoint<A> {
         // The last correction applied, and whether the current factorization may be reused.
         let mut previous: Option<f64> = None;
         let mut reusable = false;
+        // Forces with a kink (stops): a correction that takes one across is tested itself.
+        let kinks = rod.has_kinks();
         // Whether the iteration ended on a Newton correction (the factorization is then at
         // the iterate before the last correction, the converged step to the solver's
         // tolerance) rather than a chord correction.
@@ -229,9 +231,11 @@ impl<A: Assembly> Midpoint<A> {
                     )?;
                 if chord <= CHORD_CONTRACTION * last {
                     let increment = self.apply_correction();
-                    let converged = self
-                        .settings
-                        .converged(self.error_after(chord, previous, true), increment);
+                    let mut error = self.error_after(chord, previous, true);
+                    if kinks && self.crossed_kink(rod, state) {
+                        error = error.max(chord);
+                    }
+                    let converged = self.settings.converged(error, increment);
                     stats.record(residual_norm, chord);
                     if converged {
                         ended_on_newton = false;
@@ -264,10 +268,11 @@ impl<A: Assembly> Midpoint<A> {
             let increment = self.apply_correction();
             stats.record(residual_norm, correction);
             stats.factorizations += 1;
-            if self
-                .settings
-                .converged(self.error_after(correction, previous, false), increment)
-            {
+            let mut error = self.error_after(correction, previous, false);
+            if kinks && self.crossed_kink(rod, state) {
+                error = error.max(correction);
+            }
+            if self.settings.converged(error, increment) {
                 ended_on_newton = true;
                 break;
             }
@@ -317,6 +322,16 @@ impl<A: Assembly> Midpoint<A> {
             (Scheme::EnergyMomentum, true) => c / ESTIMATE_MARGIN,
             (Scheme::EnergyMomentum, false) => c,
         }
+    }
+
+    /// Whether the correction just applied (still in `residual`) took a kinked force across its
+    /// kink, at the state where the scheme evaluates it (the midpoint, or the step's end).
+    fn crossed_kink(&self, rod: &A, state: &DynamicState) -> bool {
+        let w = match self.scheme {
+            Scheme::Midpoint => 0.5,
+            Scheme::EnergyMomentum => 1.0,
+        };
+        rod.crosses_kink(&state.u, &self.du, &self.residual[..self.du.len()], w)
     }
 
     fn check_iteration_limit(

@@ -160,6 +160,7 @@ impl Assembly for Structure {
                 .map(|m| vec![ElementTangent::default(); m.rod.elements.len()])
                 .collect(),
             axial: vec![Matrix2::zeros(); self.axial.len()],
+            nodal: vec![0.0; self.nonlinear.len()],
         }
     }
 
@@ -220,11 +221,13 @@ impl Assembly for Structure {
 
     fn internal_force(&self, u: &[f64], f: &mut [f64]) {
         if self.is_single() {
-            return self.rod().internal_force(u, f);
+            self.rod().internal_force(u, f);
+            return self.add_nonlinear_force::<StructureMatrix>(u, f, None, None);
         }
         self.for_members(u, f, true, |_, rod, u, f| rod.internal_force(u, f));
         self.add_extra_force(u, f, None, None);
         self.fold(f);
+        self.add_nonlinear_force::<StructureMatrix>(u, f, None, None);
     }
 
     fn internal_force_and_tangent(
@@ -235,7 +238,8 @@ impl Assembly for Structure {
         scale: f64,
     ) {
         if let StructureMatrix::Chain(m) = jac {
-            return self.rod().internal_force_and_tangent(u, f, m, scale);
+            self.rod().internal_force_and_tangent(u, f, m, scale);
+            return self.add_nonlinear_force(u, f, Some((m, scale)), None);
         }
         let g = self.graph.as_ref().expect("a frame");
         let matrix = Self::graph_matrix(jac);
@@ -245,6 +249,7 @@ impl Assembly for Structure {
         });
         self.add_extra_force(u, f, Some((matrix, scale)), None);
         self.fold(f);
+        self.add_nonlinear_force(u, f, Some((matrix, scale)), None);
     }
 
     fn internal_force_and_tangent_kept(
@@ -256,13 +261,9 @@ impl Assembly for Structure {
         kept: &mut StructureTangents,
     ) {
         if let StructureMatrix::Chain(m) = jac {
-            return self.rod().internal_force_and_tangent_kept(
-                u,
-                f,
-                m,
-                scale,
-                &mut kept.members[0],
-            );
+            let rod = self.rod();
+            rod.internal_force_and_tangent_kept(u, f, m, scale, &mut kept.members[0]);
+            return self.add_nonlinear_force(u, f, Some((m, scale)), Some(&mut kept.nodal));
         }
         let g = self.graph.as_ref().expect("a frame");
         let matrix = Self::graph_matrix(jac);
@@ -273,6 +274,7 @@ impl Assembly for Structure {
         });
         self.add_extra_force(u, f, Some((matrix, scale)), Some(&mut kept.axial));
         self.fold(f);
+        self.add_nonlinear_force(u, f, Some((matrix, scale)), Some(&mut kept.nodal));
     }
 
     fn internal_force_and_element_tangents(
@@ -282,9 +284,10 @@ impl Assembly for Structure {
         kept: &mut StructureTangents,
     ) {
         if self.is_single() {
-            return self
-                .rod()
-                .internal_force_and_element_tangents(u, f, &mut kept.members[0]);
+            let rod = self.rod();
+            rod.internal_force_and_element_tangents(u, f, &mut kept.members[0]);
+            let nodal = Some(&mut kept.nodal[..]);
+            return self.add_nonlinear_force::<StructureMatrix>(u, f, None, nodal);
         }
         let members = &mut kept.members;
         self.for_members(u, f, true, |i, rod, u, f| {
@@ -292,6 +295,8 @@ impl Assembly for Structure {
         });
         self.add_extra_force(u, f, None, Some(&mut kept.axial));
         self.fold(f);
+        let nodal = Some(&mut kept.nodal[..]);
+        self.add_nonlinear_force::<StructureMatrix>(u, f, None, nodal);
     }
 
     fn tangent_change_times(
@@ -302,12 +307,9 @@ impl Assembly for Structure {
         scale: f64,
     ) {
         if self.is_single() {
-            return self.rod().tangent_change_times(
-                (&k1.members[0], &k0.members[0]),
-                y,
-                out,
-                scale,
-            );
+            let pair = (&k1.members[0][..], &k0.members[0][..]);
+            self.rod().tangent_change_times(pair, y, out, scale);
+            return self.add_nonlinear_change((&k1.nodal, &k0.nodal), y, out, scale);
         }
         self.for_members(y, out, true, |i, rod, y, out| {
             rod.tangent_change_times((&k1.members[i], &k0.members[i]), y, out, scale);
@@ -316,9 +318,13 @@ impl Assembly for Structure {
             add_block_times(a.nodes, &(t1 - t0), y, out, scale);
         }
         self.fold(out);
+        self.add_nonlinear_change((&k1.nodal, &k0.nodal), y, out, scale);
     }
 
     fn add_kept_tangents(&self, jac: &mut StructureMatrix, kept: &StructureTangents, scale: f64) {
+        if !self.nonlinear.is_empty() {
+            self.nonlinear.add_kept(jac, &kept.nodal, scale);
+        }
         if let StructureMatrix::Chain(m) = jac {
             return self.rod().add_kept_tangents(m, &kept.members[0], scale);
         }
@@ -341,7 +347,8 @@ impl Assembly for Structure {
 
     fn discrete_gradient(&self, ua: &[f64], ub: &[f64], f: &mut [f64]) {
         if self.is_single() {
-            return self.rod().discrete_gradient(ua, ub, f);
+            self.rod().discrete_gradient(ua, ub, f);
+            return self.add_nonlinear_gradient::<StructureMatrix>(ua, ub, f, None);
         }
         f[..3 * self.joints.len()].fill(0.0);
         for m in &self.members {
@@ -355,6 +362,7 @@ impl Assembly for Structure {
         self.add_spring_force(ua, f, 0.5);
         self.add_spring_force(ub, f, 0.5);
         self.fold(f);
+        self.add_nonlinear_gradient::<StructureMatrix>(ua, ub, f, None);
     }
 
     fn discrete_gradient_and_tangent(
@@ -366,9 +374,9 @@ impl Assembly for Structure {
         scale: f64,
     ) {
         if let StructureMatrix::Chain(m) = jac {
-            return self
-                .rod()
+            self.rod()
                 .discrete_gradient_and_tangent(ua, ub, f, m, scale);
+            return self.add_nonlinear_gradient(ua, ub, f, Some((m, scale)));
         }
         let g = self.graph.as_ref().expect("a frame");
         let matrix = Self::graph_matrix(jac);
@@ -395,6 +403,7 @@ impl Assembly for Structure {
             matrix.add_diagonal(d, scale * k);
         }
         self.fold(f);
+        self.add_nonlinear_gradient(ua, ub, f, Some((matrix, scale)));
     }
 
     fn add_mass(&self, jac: &mut StructureMatrix, scale: f64) {
@@ -480,7 +489,7 @@ impl Assembly for Structure {
     }
 
     fn has_state_damping(&self) -> bool {
-        self.dashpots().next().is_some()
+        self.dashpots().next().is_some() || self.nonlinear.has_dashpots()
     }
 
     fn add_state_damping(
@@ -489,18 +498,35 @@ impl Assembly for Structure {
         du: &[f64],
         dt: f64,
         out: &mut [f64],
-        jac: Option<&mut StructureMatrix>,
+        mut jac: Option<&mut StructureMatrix>,
     ) {
-        self.link_damping(u_n, du, dt, out, jac);
+        self.link_damping(u_n, du, dt, out, jac.as_deref_mut());
+        self.nonlinear.add_damping(u_n, du, dt, out, jac);
     }
 
     fn state_damping_dissipation(&self, u: &[f64], du: &[f64], dt: f64) -> f64 {
-        self.link_dissipation(u, du, dt)
+        self.link_dissipation(u, du, dt) + self.nonlinear.dissipation(u, du, dt)
+    }
+
+    fn has_kinks(&self) -> bool {
+        self.nonlinear.has_kinks()
+    }
+
+    fn crosses_kink(&self, u: &[f64], du: &[f64], c: &[f64], w: f64) -> bool {
+        self.kink_crossed(u, du, c, w)
+    }
+
+    fn add_static_regularization(&self, u: &[f64], jac: &mut StructureMatrix) {
+        self.regularize_statics(u, jac);
+    }
+
+    fn static_step_limit(&self, u: &[f64], delta: &[f64]) -> f64 {
+        self.static_limit(u, delta)
     }
 
     fn strain_energy(&self, u: &[f64]) -> f64 {
         if self.is_single() {
-            return self.rod().strain_energy(u);
+            return self.rod().strain_energy(u) + self.nonlinear_energy(u);
         }
         let members: f64 = (self.members.iter())
             .map(|m| m.rod.strain_energy(&u[m.range()]))
@@ -509,7 +535,7 @@ impl Assembly for Structure {
         let springs: f64 = (self.nodal.springs.iter())
             .map(|&(d, k)| 0.5 * k * u[d] * u[d])
             .sum();
-        members + axial + springs
+        members + axial + springs + self.nonlinear_energy(u)
     }
 
     fn kinetic_energy(&self, v: &[f64]) -> f64 {

@@ -11,6 +11,14 @@
 //! quadratic in `l`, `f_b = k (l_a + l_b - 2 rest) / (l_a + l_b) (r_a + r_b) / 2` (and `-f_b`
 //! on the first node) gives `f . (x_b - x_a) = V(l_b) - V(l_a)` exactly, since
 //! `(r_a + r_b) . (r_b - r_a) = l_b^2 - l_a^2`: no division by a small difference.
+//!
+//! A cable (`kind = "cable"`, [`Axial::tension_only`]) stores `k / 2 max(0, l - rest)^2`: no
+//! force while slack, the bar's force and tangent while taut (from `l = rest` on, its tangent
+//! `k e e^T`). Its discrete gradient is `f_b = 2 G / (l_a + l_b) (r_a + r_b) / 2` with
+//! `G = (V(l_b) - V(l_a)) / (l_b - l_a)` the one-sided energy's scalar discrete gradient
+//! ([`crate::model::contact::one_sided_gradient`], in closed forms that never divide by a small
+//! difference): its work is `G (l_b^2 - l_a^2) / (l_a + l_b) = V(l_b) - V(l_a)` exactly (for the
+//! bar, `G = k (l_a + l_b - 2 rest) / 2`: the same formula).
 use nalgebra::{Matrix2, Vector2};
 
 /// A two-node axial element between the translations of two nodes.
@@ -30,6 +38,8 @@ pub struct Axial {
     /// length over 6: the coefficients of the consistent pattern `[[2, 1], [1, 2]]`.
     pub mass: f64,
     pub damping: f64,
+    /// A cable: tension only (slack, no force, while shorter than `rest`).
+    pub tension_only: bool,
 }
 
 impl Axial {
@@ -51,6 +61,7 @@ impl Axial {
             c: 0.0,
             mass: rho_a * length / 6.0,
             damping: d * length / 6.0,
+            tension_only: false,
         }
     }
 
@@ -70,6 +81,25 @@ impl Axial {
             c,
             mass: 0.0,
             damping: 0.0,
+            tension_only: false,
+        }
+    }
+
+    /// This element as a cable: it carries tension only.
+    pub fn cable(self) -> Axial {
+        Axial {
+            tension_only: true,
+            ..self
+        }
+    }
+
+    /// Its axial force for the stretch `l - rest` (tension positive): `k (l - rest)`, a cable's
+    /// cut at zero.
+    fn axial_force(&self, stretch: f64) -> f64 {
+        if self.tension_only {
+            crate::model::contact::one_sided_force(self.k, stretch)
+        } else {
+            self.k * stretch
         }
     }
 
@@ -82,11 +112,14 @@ impl Axial {
 
     /// The force along the line, tension positive: `k (l - rest)`.
     pub fn force(&self, u: &[f64]) -> f64 {
-        self.k * (self.chord(u).norm() - self.rest)
+        self.axial_force(self.chord(u).norm() - self.rest)
     }
 
     pub fn strain_energy(&self, u: &[f64]) -> f64 {
         let stretch = self.chord(u).norm() - self.rest;
+        if self.tension_only {
+            return crate::model::contact::one_sided_energy(self.k, stretch);
+        }
         0.5 * self.k * stretch * stretch
     }
 
@@ -94,7 +127,7 @@ impl Axial {
     pub fn end_force(&self, u: &[f64]) -> Vector2<f64> {
         let r = self.chord(u);
         let l = r.norm();
-        self.k * (l - self.rest) / l * r
+        self.axial_force(l - self.rest) / l * r
     }
 
     /// The force on the second end and the tangent block `K = k e e^T + N / l (I - e e^T)`
@@ -103,7 +136,10 @@ impl Axial {
         let r = self.chord(u);
         let l = r.norm();
         let e = r / l;
-        let n = self.k * (l - self.rest);
+        if self.tension_only && l < self.rest {
+            return (Vector2::zeros(), Matrix2::zeros());
+        }
+        let n = self.axial_force(l - self.rest);
         let outer = e * e.transpose();
         let tangent = self.k * outer + (n / l) * (Matrix2::identity() - outer);
         (n * e, tangent)
@@ -113,7 +149,12 @@ impl Axial {
     pub fn discrete_gradient(&self, ua: &[f64], ub: &[f64]) -> Vector2<f64> {
         let (ra, rb) = (self.chord(ua), self.chord(ub));
         let (la, lb) = (ra.norm(), rb.norm());
-        let factor = self.k * (la + lb - 2.0 * self.rest) / (la + lb);
+        let factor = if self.tension_only {
+            let (pa, pb) = (la - self.rest, lb - self.rest);
+            2.0 * crate::model::contact::one_sided_gradient(self.k, pa, pb) / (la + lb)
+        } else {
+            self.k * (la + lb - 2.0 * self.rest) / (la + lb)
+        };
         factor * 0.5 * (ra + rb)
     }
 
@@ -230,5 +271,38 @@ mod tests {
         let mid: Vec<f64> = ua.iter().zip(&tiny).map(|(a, b)| 0.5 * (a + b)).collect();
         let g = b.discrete_gradient(&ua, &tiny);
         assert!((g - b.end_force(&mid)).norm() <= 1e-8 * g.norm());
+    }
+
+    /// A cable: no force while slack, the bar's while taut; its discrete gradient's work is the
+    /// change of its energy to round-off across the slack-taut kink (both ways), and within the
+    /// taut range it is the bar's.
+    #[test]
+    fn a_cable_carries_tension_only() {
+        let c = bar().cable();
+        let slack = [0.1, -0.2, 0.0, 0.0, -0.2, 0.0];
+        assert_eq!(c.force(&slack), 0.0);
+        assert_eq!(c.strain_energy(&slack), 0.0);
+        assert_eq!(
+            c.force_and_tangent(&slack),
+            (Vector2::zeros(), Matrix2::zeros())
+        );
+        let taut = [-0.4, 0.3, 0.0, 0.9, -0.6, 0.0];
+        assert_eq!(c.force_and_tangent(&taut), bar().force_and_tangent(&taut));
+        for (ua, ub) in [(slack, taut), (taut, slack)] {
+            let f = c.discrete_gradient(&ua, &ub);
+            let work = f[0] * ((ub[3] - ub[0]) - (ua[3] - ua[0]))
+                + f[1] * ((ub[4] - ub[1]) - (ua[4] - ua[1]));
+            let change = c.strain_energy(&ub) - c.strain_energy(&ua);
+            assert!(
+                (work - change).abs() <= 1e-11 * change.abs(),
+                "{work} vs {change}"
+            );
+        }
+        let tauter = [-0.5, 0.3, 0.0, 1.0, -0.6, 0.0];
+        let (g, h) = (
+            c.discrete_gradient(&taut, &tauter),
+            bar().discrete_gradient(&taut, &tauter),
+        );
+        assert!((g - h).norm() <= 1e-12 * h.norm());
     }
 }

@@ -20,12 +20,15 @@
 mod assembly;
 mod axial;
 mod graph;
+mod kinks;
 mod matrix;
+pub mod nonlinear;
 mod points;
 mod topology;
 
 pub use axial::Axial;
 pub use matrix::StructureMatrix;
+pub use nonlinear::{CubicSpring, Nonlinear, Stop};
 pub use points::Place;
 
 use super::element::ElementTangent;
@@ -69,6 +72,8 @@ pub struct NodalTerms {
 pub struct StructureTangents {
     pub members: Vec<Vec<ElementTangent>>,
     pub axial: Vec<Matrix2<f64>>,
+    /// The stops' and cubic springs' stiffness (see [`Nonlinear::len`]).
+    pub nodal: Vec<f64>,
 }
 
 #[derive(Clone, Debug)]
@@ -78,6 +83,8 @@ pub struct Structure {
     pub joints: Vec<Vector2<f64>>,
     pub axial: Vec<Axial>,
     pub nodal: NodalTerms,
+    /// Stops and cubic springs (on master dofs; empty: skipped).
+    pub nonlinear: Nonlinear,
     dofs: usize,
     /// `(slave, master)` dof pairs, and the slaves alone.
     ties: Vec<(usize, usize)>,
@@ -119,6 +126,7 @@ impl Structure {
             joints: Vec::new(),
             axial: Vec::new(),
             nodal: NodalTerms::default(),
+            nonlinear: Nonlinear::default(),
             dofs,
             ties: Vec::new(),
             slaves: Vec::new(),

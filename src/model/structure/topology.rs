@@ -48,11 +48,19 @@ impl Structure {
             .filter(|&j| !rigid[j])
             .map(|j| 3 * j + ROTATION)
             .collect();
+        let cables = (axial.iter().enumerate())
+            .filter(|(_, a)| a.tension_only)
+            .map(|(i, _)| i)
+            .collect();
         let mut s = Structure {
             members,
             joints,
             axial,
             nodal,
+            nonlinear: super::Nonlinear {
+                cables,
+                ..super::Nonlinear::default()
+            },
             dofs,
             slaves: ties.iter().map(|&(s, _)| s).collect(),
             ties,
