@@ -22,6 +22,7 @@ import pytest
 
 from georod_tools.report.animation import VISIBLE, figure, magnified, record, segments
 from georod_tools.report.marks import STYLES, positions
+from georod_tools.report.places import Piece, arc
 from helpers import FmuInfo
 from scene_fmus import package_scene
 
@@ -128,3 +129,49 @@ def test_hinges_and_links_are_marked(scenes: Callable[[str], FmuInfo]) -> None:
     legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     assert {STYLES["hinge"].legend, STYLES["link"].legend} <= set(legend), legend
     matplotlib.pyplot.close(fig)
+
+
+@pytest.mark.parametrize("rise", [0.5, -0.5, 1.5, 2.0, -2.0])
+def test_an_arc_member_runs_from_its_from_joint_through_its_crown(rise: float) -> None:
+    """A member's reference arc (a chord of 4 at 30 degrees, rise to its left): its ends at its
+    joints, its middle the chord's middle moved by the rise along the chord's left normal, and
+    equal stations equal arcs (equal chords between them). Round-off: 1e-12."""
+    angle = math.radians(30.0)
+    head = (1.0, 1.0)
+    tail = (1.0 + 4.0 * math.cos(angle), 1.0 + 4.0 * math.sin(angle))
+    piece = Piece("arch", "A", "B", arc(4.0, rise), (), head, tail, rise)
+    assert piece.reference(0.0) == pytest.approx(head, abs=1e-12)
+    assert piece.reference(1.0) == pytest.approx(tail, abs=1e-12)
+    normal = (-math.sin(angle), math.cos(angle))
+    crown = (
+        0.5 * (head[0] + tail[0]) + rise * normal[0],
+        0.5 * (head[1] + tail[1]) + rise * normal[1],
+    )
+    assert piece.reference(0.5) == pytest.approx(crown, abs=1e-12)
+    steps = [math.dist(piece.reference(i / 8), piece.reference((i + 1) / 8)) for i in range(8)]
+    assert max(steps) - min(steps) < 1e-12, steps
+
+
+def test_a_stop_keeps_its_magnified_distance_from_its_node() -> None:
+    """A frame magnified by f draws a stop (a point fixed in space) at its node's initial
+    position plus f times their distance, so a node reaching its stop is drawn touching it."""
+    from georod_tools.report.animation import Motion
+    from georod_tools.report.marks import Mark
+
+    # Two members of 3 samples: (0, 0)-(0, 2) and (0, 2)-(4, 2); the second sags by 1 mm.
+    x0 = np.array([0.0, 0.0, 0.0, 0.0, 2.0, 4.0])
+    y0 = np.array([0.0, 1.0, 2.0, 2.0, 2.0, 2.0])
+    sag = np.array([0.0, 0.0, 0.0, 0.0, -1e-3, 0.0])
+    stop = Mark("stop", "bumper", np.full(2, 0.5), np.full(2, 1), anchor=(2.0, 2.0 - 1e-3))
+    motion = Motion(
+        "m", "g", np.array([0.0, 1.0]), np.stack([x0, x0]), np.stack([y0, y0 + sag]), [stop]
+    )
+    motion.pieces = 2
+    shown, factor = magnified(motion)
+    assert factor == 200.0  # the largest 1, 2, 5 x 10^n with f 1e-3 <= 0.1 x 4 m
+    (drawn_stop,) = shown.marks
+    assert drawn_stop.anchor == pytest.approx((2.0, 2.0 - factor * 1e-3), abs=1e-12)
+    # In the last frame the node touches its stop, drawn as touching.
+    at = positions(drawn_stop, shown.x, shown.y, 2)
+    node = (shown.x[1, 4], shown.y[1, 4])
+    assert tuple(at[1]) == pytest.approx(node, abs=1e-12)

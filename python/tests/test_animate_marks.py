@@ -1,7 +1,8 @@
 """``georod-tools animate`` marks the scene's items where they are in each frame: a moving load at
 ``speed (t - enter)`` along the rod (examples/Bridge.toml: 30 m/s, entering at 0.1 s, over 20 m),
 absent before it enters and after it leaves; point loads and springs at their stations
-(examples/ElasticBearings.toml); and the legend, below the axes, never covers a support's name
+(examples/ElasticBearings.toml); a stop fixed where its node touches it
+(examples/ImpactingCantilever.toml); and the legend, below the axes, never covers a support's name
 (every example, every frame)."""
 
 from __future__ import annotations
@@ -53,6 +54,22 @@ def test_point_loads_and_springs_are_marked(examples: dict[str, FmuInfo]) -> Non
         assert STYLES[kind].legend in legend, legend
     names = {t.get_text() for t in fig.axes[0].texts}
     assert {m.name for m in motion.marks} <= names, names
+    matplotlib.pyplot.close(fig)
+
+
+def test_a_stop_stands_where_its_node_touches_it(examples: dict[str, FmuInfo]) -> None:
+    """The stop at 0.9 of the 0.3 m strip, 0.5 mm below it (examples/ImpactingCantilever.toml):
+    at (0.27, -5e-4) in every frame, while the strip moves."""
+    motion = record(examples["ImpactingCantilever"].path, {}, 0.05, 1e-3, 5)
+    (stop,) = [m for m in motion.marks if m.kind == "stop"]
+    assert stop.anchor == pytest.approx((0.27, -5e-4), abs=1e-15)
+    fig, frame = figure(motion)
+    line = next(a for a in fig.axes[0].lines if a.get_label() == STYLES["stop"].legend)
+    for k in range(len(motion.times)):
+        frame(k)
+        xs, ys = line.get_data()
+        assert (xs[0], ys[0]) == stop.anchor, k
+    assert np.ptp(motion.y[:, -1]) > 1e-4, "the strip should move"
     matplotlib.pyplot.close(fig)
 
 

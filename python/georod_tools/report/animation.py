@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from georod_tools.report.marks import STYLES, Mark, marks, positions, resolver
+from georod_tools.report.marks import STYLES, Mark, marks, on_shape, positions, resolver
 
 SHAPE = re.compile(r"shape_([xy])\[(\d+)\]$")
 #: The y axis is stretched when the motion's height is below this fraction of its width.
@@ -256,7 +256,19 @@ def magnified(motion: Motion) -> tuple[Motion, float]:
     decade = 10.0 ** math.floor(math.log10(wanted))
     factor = max(f * decade for f in (1.0, 2.0, 5.0) if f * decade <= wanted)
     shown = replace(motion, x=motion.x[:1] + factor * dx, y=motion.y[:1] + factor * dy)
+    shown.marks = [magnified_anchor(m, motion, factor) for m in motion.marks]
     return shown, factor
+
+
+def magnified_anchor(mark: Mark, motion: Motion, factor: float) -> Mark:
+    """A point fixed in space (a stop) moved so that its distance from its node's initial
+    position is magnified with the motion."""
+    if mark.anchor is None:
+        return mark
+    first = replace(mark, stations=mark.stations[:1], pieces=mark.pieces[:1])
+    start = on_shape(first, motion.x[:1], motion.y[:1], motion.pieces)[0]
+    anchor = start + factor * (np.array(mark.anchor) - start)
+    return replace(mark, anchor=(float(anchor[0]), float(anchor[1])))
 
 
 def render(motion: Motion, out: Path, fps: int) -> Path:

@@ -7,11 +7,13 @@ and a station along it; the station NaN while the item is off the structure):
 - point loads (``[[load]]`` of kind ``point``, and ``moment``) at theirs;
 - moving loads (``kind = "moving"``) at the arc length ``speed (t - enter)`` along their route
   (the rod, a member, or a path of members), absent before they enter and after they leave;
+- stops (``[[stop]]``) where they stand in space: the reference position of their node moved
+  by the gap towards their side along their dof (the point the node touches);
 - on a frame, hinged member ends (a pin drawn at the joint) and links (a dashed line between
   their two ends).
 
-A further kind (stops, cables) is one more function in :data:`KINDS` and a style in
-:data:`STYLES`. :func:`positions` places any mark on the shape in each frame.
+A further kind is one more function in :data:`KINDS` and a style in :data:`STYLES`.
+:func:`positions` places any mark in each frame.
 """
 
 from __future__ import annotations
@@ -52,6 +54,9 @@ class Mark:
     stations: np.ndarray
     #: Per frame, the piece the mark is on (the rod: 0; a frame: the member's index).
     pieces: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+    #: A point fixed in space where the mark stands in every frame instead (a stop's surface);
+    #: its place is then the node it faces.
+    anchor: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         if len(self.pieces) != len(self.stations):
@@ -63,6 +68,7 @@ STYLES: dict[str, Style] = {
     "spring": Style("s", "tab:green", "springs"),
     "point load": Style("v", "tab:red", "point loads"),
     "moving load": Style("v", "tab:purple", "moving loads"),
+    "stop": Style("D", "tab:brown", "stops"),
     "hinge": Style("o", "k", "hinges", named=False, filled=False),
     "link": Style("o", "tab:olive", "links", paired=True),
 }
@@ -105,6 +111,19 @@ def moving_loads(scene: Scene, times: np.ndarray, value: Resolve, layout: Layout
     return out
 
 
+def stops(scene: Scene, times: np.ndarray, value: Resolve, layout: Layout) -> list[Mark]:
+    """Each stop at the point its node touches: the node's reference position moved by `gap`
+    along e1 (``dof = "u1"``) or e2 towards `side`."""
+    entries = scene.get("stop", [])
+    out = []
+    for m, e in zip(fixed("stop", entries, times, layout), entries, strict=True):
+        x, y = layout.pieces[int(m.pieces[0])].reference(float(m.stations[0]))
+        reach = (1.0 if e["side"] == "+" else -1.0) * value(e.get("gap", 0.0))
+        m.anchor = (x + reach, y) if e["dof"] == "u1" else (x, y + reach)
+        out.append(m)
+    return out
+
+
 def hinges(scene: Scene, times: np.ndarray, value: Resolve, layout: Layout) -> list[Mark]:
     """A frame's hinged member ends, at their joints."""
     ends = [
@@ -132,6 +151,7 @@ KINDS: tuple[Callable[[Scene, np.ndarray, Resolve, Layout], list[Mark]], ...] = 
     springs,
     point_loads,
     moving_loads,
+    stops,
     hinges,
     links,
 )
@@ -144,9 +164,17 @@ def marks(scene: Scene, times: np.ndarray, value: Resolve) -> list[Mark]:
 
 
 def positions(mark: Mark, x: np.ndarray, y: np.ndarray, pieces: int = 1) -> np.ndarray:
-    """Where `mark` is in each frame, ``(frames, 2)`` (NaN while off the structure): its station
-    interpolated between the two shape samples of its piece around it (`x`, `y` hold `pieces`
-    pieces' samples one after the other, each equally spaced in arc length)."""
+    """Where `mark` is in each frame, ``(frames, 2)``: its anchor, or :func:`on_shape`."""
+    if mark.anchor is not None:
+        return np.tile(np.array(mark.anchor, dtype=float), (len(mark.stations), 1))
+    return on_shape(mark, x, y, pieces)
+
+
+def on_shape(mark: Mark, x: np.ndarray, y: np.ndarray, pieces: int = 1) -> np.ndarray:
+    """Where the place of `mark` is in each frame, ``(frames, 2)`` (NaN while off the
+    structure): its station interpolated between the two shape samples of its piece around it
+    (`x`, `y` hold `pieces` pieces' samples one after the other, each equally spaced in arc
+    length)."""
     points = x.shape[1] // pieces
     s = np.linspace(0.0, 1.0, points)
     out = np.full((len(mark.stations), 2), math.nan)

@@ -2,11 +2,12 @@
 member (``[[member]]``, in the order of the file, as its ``shape_x[i]`` are: ``points`` samples
 per member, from its ``from`` joint to its ``to`` joint, equally spaced in arc length).
 
-A place is ``(piece, station)``: the piece's index and a fraction of its arc length. An item
-names it as the scene file does: ``at`` on a rod; ``joint = "B"`` (the end of the first member
-that reaches B: every member there has that end at the same point), or ``member = "beam"`` with
-``at`` on a frame. A moving load runs along a route of pieces (the rod, a ``member``, or a
-``path`` of members end to end) at its speed.
+A place is ``(piece, station)``: the piece's index and a fraction of its arc length. An item names
+it as the scene file does: ``at`` on a rod; ``joint = "B"`` (the end of the first member that
+reaches B: every member there has that end at the same point), or ``member = "beam"`` with ``at``
+on a frame. A moving load runs along a route of pieces (the rod, a ``member``, or a ``path`` of
+members end to end) at its speed. Each piece knows its reference curve (a straight line or a
+circular arc between its ends), from which an item fixed in space (a stop) is placed.
 """
 
 from __future__ import annotations
@@ -33,6 +34,29 @@ class Piece:
     length: float
     #: Its hinged ends, of "start" and "end".
     hinges: tuple[str, ...] = ()
+    #: Its reference curve: from `head` to `tail`, a circular arc of `rise` to the left of the
+    #: chord (a straight line when 0).
+    head: tuple[float, float] = (0.0, 0.0)
+    tail: tuple[float, float] = (0.0, 0.0)
+    rise: float = 0.0
+
+    def reference(self, station: float) -> tuple[float, float]:
+        """The point at `station` (a fraction of the arc length) of the reference curve."""
+        (x0, y0), (x1, y1) = self.head, self.tail
+        if self.rise == 0.0:
+            return x0 + station * (x1 - x0), y0 + station * (y1 - y0)
+        chord = math.hypot(x1 - x0, y1 - y0)
+        # The left normal of the chord; the centre lies on it, R - |rise| from the chord's middle,
+        # on the side away from the bulge.
+        nx, ny = -(y1 - y0) / chord, (x1 - x0) / chord
+        radius = (0.25 * chord * chord + self.rise * self.rise) / (2.0 * abs(self.rise))
+        offset = self.rise - math.copysign(radius, self.rise)
+        cx, cy = 0.5 * (x0 + x1) + offset * nx, 0.5 * (y0 + y1) + offset * ny
+        # A bulge to the left runs clockwise about the centre.
+        angle = math.atan2(y0 - cy, x0 - cx) - math.copysign(
+            station * self.length / radius, self.rise
+        )
+        return cx + radius * math.cos(angle), cy + radius * math.sin(angle)
 
 
 def arc(chord: float, rise: float) -> float:
@@ -55,7 +79,9 @@ class Layout:
         members = scene.get("member", [])
         if not members:
             rise = value("H") if scene.get("geometry", {}).get("shape") == "arc" else 0.0
-            return cls((Piece(str(scene.get("name", "rod")), "", "", arc(value("L"), rise)),))
+            span = value("L")
+            name = str(scene.get("name", "rod"))
+            return cls((Piece(name, "", "", arc(span, rise), (), (0.0, 0.0), (span, 0.0), rise),))
         joints = {str(j["name"]): (float(j["x"]), float(j["y"])) for j in scene.get("joint", [])}
         pieces = []
         for m in members:
@@ -68,6 +94,9 @@ class Layout:
                     str(m["to"]),
                     arc(math.hypot(x1 - x0, y1 - y0), rise),
                     tuple(str(h) for h in m.get("hinges", [])),
+                    (x0, y0),
+                    (x1, y1),
+                    rise,
                 )
             )
         return cls(tuple(pieces))
