@@ -36,7 +36,7 @@ LIMITS: dict[str, float] = {}
 
 @dataclass(frozen=True)
 class Binary:
-    name: str  # e.g. "lib" for the unit tests, "scene_files" for tests/scene_files.rs
+    name: str  # "lib" for the unit tests, "suite" for tests/suite/, "no_allocation" for tests/no_allocation.rs
     path: str
 
 

@@ -24,7 +24,7 @@ REPO = Path(__file__).resolve().parents[2]
 BEAM_FMU = REPO / "target" / "fmu" / "BuckledBeam.fmu"
 needs_fmu = pytest.mark.usefixtures("fmu_paths")  # builds the FMUs when missing or stale
 # Regression guard, not an independent reference: the static buckled w_mid of the default
-# BuckledBeam (10 elements) as this code computes it (tests/physics_scenes.rs prints it).
+# BuckledBeam (10 elements) as this code computes it (tests/suite/physics_scenes.rs prints it).
 REGRESSION_W_STATIC = 0.3304747
 
 

@@ -15,10 +15,10 @@
   ``5 F L^4 / (384 EI) + F L^2 / (8 G A)`` (shear factor 1, model.md) and the first mode's
   dynamic factor ``H = 1 / (1 - r^2 + i c r / omega_1)``, ``r = Omega / omega_1``, ``omega_1``
   the Timoshenko frequency. The mesh error (second order, exactly ``C / n^2``:
-  tests/closed_form_static_beam.rs) is removed by Richardson extrapolation from 40 and 80
+  tests/suite/closed_form_static_beam.rs) is removed by Richardson extrapolation from 40 and 80
   elements.
 
-The same checks on a free rod, closer to the core, are in tests/closed_form_damping_load.rs.
+The same checks on a free rod, closer to the core, are in tests/suite/closed_form_damping_load.rs.
 """
 
 from __future__ import annotations

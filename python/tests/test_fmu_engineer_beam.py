@@ -1,6 +1,6 @@
 """The engineering beam checks of issues 24 and 25 through packaged FMUs (fmpy's FMU2Slave on the
 test scenes of python/tests/scenes/), against closed forms; the core runs the same checks in
-tests/scene_attachments.rs, tests/scene_loads.rs and tests/rayleigh_damping.rs.
+tests/suite/scene_attachments.rs, tests/suite/scene_loads.rs and tests/suite/rayleigh_damping.rs.
 
 - TipMassModes: `frequency[1..2]` of a slender cantilever (L/h = 200) with a tip mass of
   twice its own mass against the Euler-Bernoulli frequency equation

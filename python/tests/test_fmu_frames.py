@@ -70,7 +70,7 @@ def test_truss_bar_forces_and_an_inclined_roller_follow_statics(
 
 def test_portal_sway_follows_slope_deflection(fmus: Callable[[str], FmuInfo]) -> None:
     """80 elements per member leave -1.3e-4 of mesh error (second order, docs in
-    tests/frames_statics.rs); the tolerance 3e-4 covers it."""
+    tests/suite/frames_statics.rs); the tolerance 3e-4 covers it."""
     info = fmus("PortalSway")
     (sway,) = initial(info, ["sway"])
     h, span, ic = 4.0, 6.0, 8.356e-5

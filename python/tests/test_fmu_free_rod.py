@@ -35,7 +35,7 @@ it gives `v_(n+1) = ((1 - c dt/2) v_n + a dt) / (1 + c dt/2)`, i.e. `v_n = (a/c)
 rest, `r` the factor above. Per step `ln r = -c dt - (c dt)^3/12 - ...`, so after `t = n dt` the
 discrete decay is `exp(-c t)` times `1 - c t (c dt)^2 / 12` to leading order.
 
-The same closed forms through the Rust core: tests/closed_form_damping_load.rs.
+The same closed forms through the Rust core: tests/suite/closed_form_damping_load.rs.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 from the state saved at the start of the step with half the sub-step (at most 5 times); if every
 attempt fails, fmi2Discard and the state exactly as before.
 
-Both cases fail after converged sub-steps (the core test tests/step_retry.rs replays every
+Both cases fail after converged sub-steps (the core test tests/suite/step_retry.rs replays every
 attempt; here the premise is checked through the FMU's debug log: the first sub-step of the
 failing attempt converges on its own), so a retry or discard that went on from the partly
 advanced state would differ from the expected state in the last bits at least. The number of

@@ -18,7 +18,7 @@ The shear terms are 0.48 % and 0.60 % of the deflection here, and `k = 5/6` inst
 change the deflection by a fifth of that. The loads are small (`w/L ~ 1e-5`), so the
 geometrically exact rod differs from the linear beam by `O((w/L)^2) ~ 1e-10` relative; the
 roller leaves no membrane force. The hybrid element converges at second order (the error is
-`C / n^2` to the printed digits, as in tests/closed_form_static_beam.rs), so Richardson's
+`C / n^2` to the printed digits, as in tests/suite/closed_form_static_beam.rs), so Richardson's
 extrapolation `(4 w_80 - w_40) / 3` removes the mesh error.
 
 Reactions. Summing the e1 and e2 rows of `f_int(u) - f_ext = R` over all nodes: the element

@@ -112,7 +112,7 @@ impl From<SingularMatrix> for NewtonFailure {
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub(crate) enum Factorization {
     /// Block LU: for the tangents of statics, which for very slender rods are ill-conditioned
-    /// (L/h = 1e4: the cantilever of tests/stability_thin.rs), where its round-off is the
+    /// (L/h = 1e4: the cantilever of tests/suite/stability_thin.rs), where its round-off is the
     /// smaller (the symmetric elimination's stalls Newton at 8e-12 there).
     General,
     /// The symmetric elimination, a third cheaper: for the time steps' Jacobians, which the

@@ -359,7 +359,7 @@ mod tests {
             (work - dv).abs() < 1e-12 * dv.abs().max(1.0),
             "energy {work} vs {dv}"
         );
-        // Rigid translations (rotations: the free-flight tests of tests/energy_momentum.rs).
+        // Rigid translations (rotations: the free-flight tests of tests/suite/energy_momentum.rs).
         assert!((f[0] + f[3]).abs() < 1e-10 * f.norm() && (f[1] + f[4]).abs() < 1e-10 * f.norm());
         let small = ua + 1e-4 * (ub - ua);
         let near = el.discrete_gradient(&section, &ua, &small);

@@ -3,8 +3,7 @@
 //! from Rust. The scenes' resources come from the FMI 2.0 host (`fmi_host::resources`).
 #![allow(dead_code)]
 
-#[path = "../fmi_host/mod.rs"]
-pub mod fmi_host;
+use crate::fmi_host;
 
 use georod::fmi::api3::*;
 use georod::fmi::types3::*;

@@ -59,7 +59,7 @@ pub enum Scheme {
 const CHORD_CONTRACTION: f64 = 0.01;
 /// Safety factor on the estimated error left after a correction (see [`error_after`]): the
 /// estimate must pass the convergence test a hundred times over (with ten, the midpoint rule's
-/// momenta on a stiff spinning rod, tests/energy_momentum.rs, drift by 4e-10 in 300 steps
+/// momenta on a stiff spinning rod, tests/suite/energy_momentum.rs, drift by 4e-10 in 300 steps
 /// instead of staying at 1e-10).
 const ESTIMATE_MARGIN: f64 = 0.01;
 

@@ -1,0 +1,81 @@
+//! Every integration test but the two that count allocations (a global allocator is a
+//! whole binary's): one test binary, one link, instead of one per file.
+
+#[path = "../common/mod.rs"]
+mod common;
+#[path = "../fmi3_host/mod.rs"]
+mod fmi3_host;
+#[path = "../fmi_host/mod.rs"]
+mod fmi_host;
+
+mod arc_reference_geometry;
+mod arches_pinned;
+mod arches_shallow_closed_form;
+mod arches_truss;
+mod cli;
+mod cli_check_messages;
+mod cli_frames;
+mod cli_modes;
+mod closed_form_damping_load;
+mod closed_form_static_beam;
+mod contact_bad_input;
+mod contact_cables;
+mod contact_energy;
+mod contact_lyapunov;
+mod contact_springs;
+mod contact_stops;
+mod energy_balance;
+mod energy_momentum;
+mod fmi3_api;
+mod fmi3_calls;
+mod fmi3_hardening;
+mod fmi_calls;
+mod fmi_instantiation;
+mod fmi_shape_outputs;
+mod fmi_states;
+mod fmi_values;
+mod foundation_partial;
+mod frames_bad_input;
+mod frames_core;
+mod frames_dynamics;
+mod frames_stability;
+mod frames_statics;
+mod frames_vocabulary;
+mod lyapunov_linear;
+mod lyapunov_nonlinear;
+mod moving_load_late_entry;
+mod physics_buckling;
+mod physics_elastica;
+mod physics_frequencies;
+mod physics_momentum;
+mod physics_scenes;
+mod physics_tangent;
+mod rayleigh_damping;
+mod readouts_accelerations;
+mod readouts_frequencies;
+mod readouts_section_forces;
+mod scene_attachments;
+mod scene_cantilever;
+mod scene_defaults;
+mod scene_files;
+mod scene_initial_inputs;
+mod scene_input_derivatives;
+mod scene_limits;
+mod scene_load_directions;
+mod scene_load_units;
+mod scene_loads;
+mod scene_mesh;
+mod scene_model_options;
+mod scene_moving_load;
+mod scene_reference_state;
+mod scene_sections;
+mod scene_spring_bases;
+mod scene_supports;
+mod scene_velocity_sensors;
+mod stability_driver;
+mod stability_energy;
+mod stability_extremes;
+mod stability_free_flight;
+mod stability_readouts;
+mod stability_thin;
+mod step_retry;
