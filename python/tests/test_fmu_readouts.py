@@ -15,8 +15,9 @@ and the accelerations along a free rod under a harmonic load.
   stresses `N/A -+ M h/(2 I)` (round-off);
 - `frequency[1..3]` with `P = 0`: the Euler-Bernoulli cantilever `(beta L)^2 / (2 pi L^2)
   sqrt(EI / (rho A))`, `beta L = 1.8751, 4.6941, 7.8548`; the mesh error is second order,
-  `1.2 (beta L / (pi n))^2` (tests/suite/readouts_frequencies.rs): 1e-3, 7e-3 and 2e-2 on 20 elements,
-  shear and rotary inertia `(h/L)^2 (beta L)^2 / 10`, below 6e-4: asserted at twice the sum.
+  `1.2 (beta L / (pi n))^2` (tests/suite/readouts_frequencies.rs): 1e-3, 7e-3 and 2e-2 on 20
+  elements, shear and rotary inertia `(h/L)^2 (beta L)^2 / 10`, below 6e-4: asserted at twice the
+  sum.
 
 `python/tests/scenes/ReadoutFreeRod.toml`: a free rod under `F cos(Omega t)` along e2. With the
 consistent mass, the rod's momentum change is `rho A` times the integral of the interpolated
