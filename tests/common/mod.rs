@@ -7,6 +7,7 @@
 pub mod contact;
 pub mod linear_frame;
 pub mod moving;
+pub mod scenes;
 
 use georod::model::loads::{LoadShape, LoadTime};
 use georod::model::rod::{U1, U2};

@@ -1,6 +1,7 @@
 //! The command on frames: `georod path` through Lee's frame (both limit points and the
 //! equilibria at zero load), `georod modes` writing every member's nodes, `georod check`
 //! naming which shape samples sample which member.
+use crate::common;
 use std::process::{Command, Output};
 
 fn georod(args: &[&str]) -> Output {
@@ -20,66 +21,26 @@ fn stdout(out: &Output) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
-/// Lee's frame (L = 120, EI = 1440, the load 24 from the corner), 40 elements, with a sensor
-/// at the load.
-const LEE: &str = r#"
-name = "Lee"
-[defaults]
-E = 720.0
-nu = 0.3
-rho = 1e-6
-elements = 40
-[section]
-b = 3.0
-h = 2.0
-[[joint]]
-name = "base"
-x = 0.0
-y = 0.0
-[[joint]]
-name = "corner"
-x = 0.0
-y = 120.0
-[[joint]]
-name = "end"
-x = 120.0
-y = 120.0
-[[member]]
-name = "column"
-from = "base"
-to = "corner"
-[[member]]
-name = "beam"
-from = "corner"
-to = "end"
-[[support]]
-name = "pin_base"
-joint = "base"
-fix = ["u1", "u2"]
-[[support]]
-name = "pin_end"
-joint = "end"
-fix = ["u1", "u2"]
-[[load]]
-name = "P"
-kind = "point"
-member = "beam"
-at = 0.2
-direction = "-e2"
-value = 0.0
-[[sensor]]
+/// Lee's frame (`common::scenes::LEE_FRAME`) with a sensor at the load.
+fn lee_with_sensor() -> String {
+    format!(
+        "{}{}",
+        common::scenes::LEE_FRAME,
+        r#"[[sensor]]
 name = "v"
 member = "beam"
 at = 0.2
 quantity = "u2"
-"#;
+"#
+    )
+}
 
 #[test]
 fn path_follows_lee_frame_through_both_limit_points() {
     let dir = std::env::temp_dir().join(format!("georod_cli_frames_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let file = dir.join("Lee.toml");
-    std::fs::write(&file, LEE).unwrap();
+    std::fs::write(&file, lee_with_sensor()).unwrap();
     let out = georod(&[
         "path",
         "--scene",

@@ -123,56 +123,9 @@ fn von_mises_truss_follows_the_exact_path_and_snaps_at_its_limit_load() {
     );
 }
 
-const LEE: &str = r#"
-name = "Lee"
-[defaults]
-E = 720.0
-nu = 0.3
-rho = 1e-6
-elements = 40
-[section]
-b = 3.0
-h = 2.0
-[[joint]]
-name = "base"
-x = 0.0
-y = 0.0
-[[joint]]
-name = "corner"
-x = 0.0
-y = 120.0
-[[joint]]
-name = "end"
-x = 120.0
-y = 120.0
-[[member]]
-name = "column"
-from = "base"
-to = "corner"
-[[member]]
-name = "beam"
-from = "corner"
-to = "end"
-[[support]]
-name = "pin_base"
-joint = "base"
-fix = ["u1", "u2"]
-[[support]]
-name = "pin_end"
-joint = "end"
-fix = ["u1", "u2"]
-[[load]]
-name = "P"
-kind = "point"
-member = "beam"
-at = 0.2
-direction = "-e2"
-value = 0.0
-"#;
-
 /// Lee's frame's first limit load (`P`) and its path with `elements` elements.
 fn lee(elements: f64) -> (f64, georod::integrator::continuation::Path, Vec<f64>) {
-    let sim = simulation_of(LEE, &[("elements", elements)]);
+    let sim = simulation_of(common::scenes::LEE_FRAME, &[("elements", elements)]);
     let s = sim.structure();
     let at = s.member_place(1, 24.0);
     let mut q = vec![0.0; s.dofs()];
