@@ -169,7 +169,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
             return c.err(
                 "[[support]]",
                 format!(
-                    "the supports (with the springs and foundations) leave the rod free to \
+                    "the supports (with the springs, foundations and stops) leave the rod free to \
                      {free}: it has no static equilibrium. Hold more degrees of freedom, or start \
                      from [initial] state = \"reference\""
                 ),

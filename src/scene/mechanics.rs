@@ -16,7 +16,7 @@ pub(super) fn free_rigid_motion(
     };
     // Rows: what each held dof sees of (translation e1, translation e2, rotation).
     let mut rows: Vec<[f64; 3]> = Vec::new();
-    // Supports, springs and foundations (on u2 at both ends) restrain.
+    // Supports, springs, stops and foundations (on u2 at both ends) restrain.
     let mut held: Vec<(f64, usize)> = Vec::new();
     for s in &scene.supports {
         held.extend((0..3).filter(|&k| s.fixed[k]).map(|k| (s.at.fraction(), k)));

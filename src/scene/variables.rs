@@ -78,13 +78,19 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
             OutputId::Sensor(i),
         ));
     }
+    // What the supports and springs act on, in their descriptions.
+    let body = if scene.frame.is_some() {
+        "structure"
+    } else {
+        "rod"
+    };
     for (k, s) in scene.supports.iter().enumerate() {
         for (c, suffix) in REACTION_SUFFIXES.iter().enumerate() {
             let (unit, what) = if c < 2 {
                 (
                     "N",
                     format!(
-                        "Reaction force of support {} on the rod along e{}",
+                        "Reaction force of support {} on the {body} along e{}",
                         s.name,
                         c + 1
                     ),
@@ -93,7 +99,7 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
                 (
                     "N.m",
                     format!(
-                        "Reaction moment of support {} on the rod (counter-clockwise)",
+                        "Reaction moment of support {} on the {body} (counter-clockwise)",
                         s.name
                     ),
                 )
@@ -121,7 +127,7 @@ pub fn variables(scene: &Scene) -> Vec<Variable> {
             SPRING_FORCE_VR + k as u32,
             Some(if s.dof == 2 { "N.m" } else { "N" }),
             format!(
-                "Force of spring {} and its dashpot on the rod along {}; averaged over the last \
+                "Force of spring {} and its dashpot on the {body} along {}; averaged over the last \
                  communication step (before the first step: the static force)",
                 s.name,
                 ["e1", "e2", "the rotation (a moment)"][s.dof]
