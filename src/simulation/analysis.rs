@@ -91,6 +91,20 @@ impl Analysis {
             )
             .into());
         }
+        let links = scene.frame.iter().flat_map(|f| &f.links);
+        if let Some(link) = links.filter(|l| l.c > 0.0).find(|_| k > 0) {
+            return Err(refuse(
+                LYAPUNOV,
+                format!(
+                    "{k} exponents: link `{}` has a dashpot (c = {}), whose force along the \
+                     link's current line depends on the state and the step together; the \
+                     tangent map does not include it. Set its c = 0 (damp with d or [damping] \
+                     instead) for exponents",
+                    link.name, link.c
+                ),
+            )
+            .into());
+        }
         if k > 2 * free {
             return Err(refuse(
                 LYAPUNOV,

@@ -217,3 +217,24 @@ fn the_energy_ledger_of_a_swaying_frame_closes() {
         );
     }
 }
+
+/// A link's dashpot acts along the link's current line at the step's rate: the tangent map of the
+/// Lyapunov exponents does not include it, so exponents are refused, naming the link (as a stop's
+/// contact dashpot is); without the dashpot they run.
+#[test]
+fn exponents_are_refused_with_a_link_dashpot() {
+    let with = |damped: bool| -> Result<(), String> {
+        let scene = georod::scene::Scene::parse(&braced_portal(damped), "braced.toml").unwrap();
+        let values = scene
+            .values_with([("integrator", 1.0), ("lyapunov_count", 1.0)])
+            .map_err(|e| e.to_string())?;
+        georod::simulation::Simulation::new(std::sync::Arc::new(scene), values)
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    let e = with(true).expect_err("refused");
+    println!("{e}");
+    assert!(e.contains("lyapunov_count"), "{e}");
+    assert!(e.contains("link `strut` has a dashpot (c = 2000)"), "{e}");
+    with(false).expect("without the link's dashpot exponents run");
+}
