@@ -1,143 +1,14 @@
 //! The structure as the integrators see it ([`Assembly`]): a single member hands every call to
 //! its rod (the same code as a lone rod's); a frame runs each member's rod on its slice of the
 //! vectors, adds the bars, links and joint terms, and folds the slaves' rows into their joints'.
+use super::frame_terms::add_block_times;
 use super::matrix::StructureMatrix;
 use super::{Structure, StructureTangents};
 use crate::model::assembly::Assembly;
 use crate::model::bands::Scaled;
 use crate::model::element::ElementTangent;
-use crate::solver::sparse_blocks::SparseBlocks;
 use crate::solver::SystemMatrix;
 use nalgebra::{Matrix2, Vector2};
-
-impl Structure {
-    /// A frame's graph (panics for a single member).
-    fn graph(&self) -> &super::graph::Graph {
-        self.graph.as_ref().expect("a frame")
-    }
-
-    /// The matrix of a frame (panics for a single member).
-    fn graph_matrix(jac: &mut StructureMatrix) -> &mut SparseBlocks {
-        match jac {
-            StructureMatrix::Graph(m) => m,
-            StructureMatrix::Chain(_) => panic!("a frame's matrix is block-sparse"),
-        }
-    }
-
-    /// Runs `each(member index, rod's slice of x, rod's slice of out)` over the members, after
-    /// zeroing the joints' rows of `out` when `overwrite` (the members write their own).
-    fn for_members(
-        &self,
-        x: &[f64],
-        out: &mut [f64],
-        overwrite: bool,
-        mut each: impl FnMut(usize, &crate::model::Rod, &[f64], &mut [f64]),
-    ) {
-        if overwrite {
-            out[..3 * self.joints.len()].fill(0.0);
-        }
-        for (i, m) in self.members.iter().enumerate() {
-            let r = m.range();
-            each(i, &m.rod, &x[r.clone()], &mut out[r]);
-        }
-    }
-
-    /// `out += scale * (K_nodal x)`: the joint springs.
-    fn add_spring_force(&self, x: &[f64], out: &mut [f64], scale: f64) {
-        for &(d, k) in &self.nodal.springs {
-            out[d] += scale * k * x[d];
-        }
-    }
-
-    /// `out += M_extra (a x + b y) + c C_extra x`: the bars' mass and damping and the joint
-    /// masses and dashpots.
-    fn add_extra_bracket(&self, ((a, x), (b, y)): (Scaled, Scaled), c: f64, out: &mut [f64]) {
-        let bracket = |d: usize| a * x[d] + b * y[d];
-        for &(d, m) in &self.nodal.masses {
-            out[d] += m * bracket(d);
-        }
-        for &(d, damping) in &self.nodal.dashpots {
-            out[d] += c * damping * x[d];
-        }
-        for bar in &self.axial {
-            bar.add_pattern_times(bar.mass, self.lumped, x, out, a);
-            bar.add_pattern_times(bar.mass, self.lumped, y, out, b);
-            bar.add_pattern_times(bar.damping, self.lumped, x, out, c);
-        }
-        if let Some((beta, tangents)) = &self.rayleigh {
-            self.add_spring_force(x, out, c * beta);
-            for (bar, k) in self.axial.iter().zip(tangents) {
-                add_block_times(bar.nodes, k, x, out, c * beta);
-            }
-        }
-    }
-
-    fn add_extra_mass(&self, jac: &mut SparseBlocks, scale: f64) {
-        for &(d, m) in &self.nodal.masses {
-            jac.add_diagonal(d, scale * m);
-        }
-        let g = self.graph();
-        for (a, bar) in self.axial.iter().enumerate() {
-            g.add_axial_pattern(jac, a, bar.mass, self.lumped, scale);
-        }
-    }
-
-    fn add_extra_damping(&self, jac: &mut SparseBlocks, scale: f64) {
-        for &(d, c) in &self.nodal.dashpots {
-            jac.add_diagonal(d, scale * c);
-        }
-        let g = self.graph();
-        for (a, bar) in self.axial.iter().enumerate() {
-            g.add_axial_pattern(jac, a, bar.damping, self.lumped, scale);
-        }
-        if let Some((beta, tangents)) = &self.rayleigh {
-            for &(d, k) in &self.nodal.springs {
-                jac.add_diagonal(d, scale * beta * k);
-            }
-            for (a, k) in tangents.iter().enumerate() {
-                g.add_axial_block(jac, a, k, scale * beta);
-            }
-        }
-    }
-
-    /// The bars', links' and joint springs' force at `u` into `f`, with their tangent into
-    /// `jac` (and kept) where given.
-    fn add_extra_force(
-        &self,
-        u: &[f64],
-        f: &mut [f64],
-        mut jac: Option<(&mut SparseBlocks, f64)>,
-        mut kept: Option<&mut Vec<Matrix2<f64>>>,
-    ) {
-        for (i, a) in self.axial.iter().enumerate() {
-            let (force, k) = a.force_and_tangent(u);
-            a.add_end_force(force, f, 1.0);
-            if let Some((m, scale)) = jac.as_mut() {
-                self.graph().add_axial_block(m, i, &k, *scale);
-            }
-            if let Some(kept) = kept.as_mut() {
-                kept[i] = k;
-            }
-        }
-        self.add_spring_force(u, f, 1.0);
-        if let Some((m, scale)) = jac {
-            for &(d, k) in &self.nodal.springs {
-                m.add_diagonal(d, scale * k);
-            }
-        }
-    }
-}
-
-/// `out += scale * [[K, -K], [-K, K]] x` on the translations of `nodes`.
-fn add_block_times(nodes: [usize; 2], k: &Matrix2<f64>, x: &[f64], out: &mut [f64], scale: f64) {
-    let [a, b] = nodes;
-    let d = Vector2::new(x[3 * b] - x[3 * a], x[3 * b + 1] - x[3 * a + 1]);
-    let f = scale * (k * d);
-    for r in 0..2 {
-        out[3 * a + r] -= f[r];
-        out[3 * b + r] += f[r];
-    }
-}
 
 impl Assembly for Structure {
     type Matrix = StructureMatrix;
@@ -528,157 +399,20 @@ impl Assembly for Structure {
         if self.is_single() {
             return self.rod().strain_energy(u) + self.nonlinear_energy(u);
         }
-        let members: f64 = (self.members.iter())
-            .map(|m| m.rod.strain_energy(&u[m.range()]))
-            .sum();
-        let axial: f64 = self.axial.iter().map(|a| a.strain_energy(u)).sum();
-        let springs: f64 = (self.nodal.springs.iter())
-            .map(|&(d, k)| 0.5 * k * u[d] * u[d])
-            .sum();
-        members + axial + springs + self.nonlinear_energy(u)
+        self.frame_strain_energy(u)
     }
 
     fn kinetic_energy(&self, v: &[f64]) -> f64 {
         if self.is_single() {
             return self.rod().kinetic_energy(v);
         }
-        let members: f64 = (self.members.iter())
-            .map(|m| m.rod.kinetic_energy(&v[m.range()]))
-            .sum();
-        let bars: f64 = (self.axial.iter())
-            .map(|a| a.pattern_form(a.mass, self.lumped, v))
-            .sum();
-        let masses: f64 = (self.nodal.masses.iter())
-            .map(|&(d, m)| m * v[d] * v[d])
-            .sum();
-        members + 0.5 * (bars + masses)
+        self.frame_kinetic_energy(v)
     }
 
     fn dissipation_rate(&self, v: &[f64]) -> f64 {
         if self.is_single() {
             return self.rod().dissipation_rate(v);
         }
-        let members: f64 = (self.members.iter())
-            .map(|m| m.rod.dissipation_rate(&v[m.range()]))
-            .sum();
-        let bars: f64 = (self.axial.iter())
-            .map(|a| a.pattern_form(a.damping, self.lumped, v))
-            .sum();
-        let dashpots: f64 = (self.nodal.dashpots.iter())
-            .map(|&(d, c)| c * v[d] * v[d])
-            .sum();
-        let rayleigh = self.rayleigh.as_ref().map_or(0.0, |(beta, tangents)| {
-            let springs: f64 = (self.nodal.springs.iter())
-                .map(|&(d, k)| k * v[d] * v[d])
-                .sum();
-            let bars: f64 = (self.axial.iter().zip(tangents))
-                .map(|(a, k)| {
-                    let [p, q] = a.nodes;
-                    let d = Vector2::new(v[3 * q] - v[3 * p], v[3 * q + 1] - v[3 * p + 1]);
-                    d.dot(&(k * d))
-                })
-                .sum();
-            beta * (springs + bars)
-        });
-        members + bars + dashpots + rayleigh
-    }
-}
-
-impl Structure {
-    /// The links with a dashpot.
-    fn dashpots(&self) -> impl Iterator<Item = &super::Axial> {
-        self.axial.iter().filter(|a| a.c > 0.0)
-    }
-
-    /// Rayleigh damping `alpha M + beta K0`, `K0` the tangent stiffness at `u0` (the initial
-    /// state): each member's own, the bars' and the joint terms'.
-    pub fn with_rayleigh(&mut self, alpha: f64, beta: f64, u0: &[f64]) {
-        for m in &mut self.members {
-            let r = m.range();
-            m.rod.with_rayleigh(alpha, beta, &u0[r]);
-        }
-        if self.is_single() {
-            return;
-        }
-        for a in &mut self.axial {
-            a.damping += alpha * a.mass;
-        }
-        let extra: Vec<(usize, f64)> = (self.nodal.masses.iter())
-            .map(|&(d, m)| (d, alpha * m))
-            .filter(|&(_, c)| c != 0.0)
-            .collect();
-        self.nodal.dashpots.extend(extra);
-        if beta != 0.0 {
-            let tangents = self
-                .axial
-                .iter()
-                .map(|a| a.force_and_tangent(u0).1)
-                .collect();
-            self.rayleigh = Some((beta, tangents));
-        }
-    }
-}
-
-/// Links' dashpots along their current line (see [`Assembly::add_state_damping`]).
-impl Structure {
-    /// Linear momentum `sum M v` over the translations (members, bars, joint masses).
-    pub fn linear_momentum(&self, v: &[f64]) -> nalgebra::Vector2<f64> {
-        let mut p = vec![0.0; v.len()];
-        self.add_mass_times(v, &mut p, 1.0);
-        // Folded: the joints' rows hold their members' ends' share.
-        (0..self.nodes())
-            .map(|i| Vector2::new(p[3 * i], p[3 * i + 1]))
-            .sum()
-    }
-
-    /// Angular momentum about the origin, `sum x_i x (M v)_i + (M v)_w`, `x_i` the current
-    /// positions of the nodes (the folded product's rows sit at the joints and the members'
-    /// own nodes).
-    pub fn angular_momentum(&self, u: &[f64], v: &[f64]) -> f64 {
-        if self.is_single() {
-            return self.rod().angular_momentum(u, v);
-        }
-        let mut p = vec![0.0; v.len()];
-        self.add_mass_times(v, &mut p, 1.0);
-        let mut total = 0.0;
-        for (j, x0) in self.joints.iter().enumerate() {
-            let x = x0 + Vector2::new(u[3 * j], u[3 * j + 1]);
-            total += x[0] * p[3 * j + 1] - x[1] * p[3 * j] + p[3 * j + 2];
-        }
-        for m in &self.members {
-            for i in 0..m.rod.nodes() {
-                let d = m.offset + 3 * i;
-                let x = m.rod.node_position(&u[m.range()], i);
-                total += x[0] * p[d + 1] - x[1] * p[d] + p[d + 2];
-            }
-        }
-        total
-    }
-
-    pub(super) fn link_damping(
-        &self,
-        u_n: &[f64],
-        du: &[f64],
-        dt: f64,
-        out: &mut [f64],
-        mut jac: Option<&mut StructureMatrix>,
-    ) {
-        for (i, a) in self.axial.iter().enumerate().filter(|(_, a)| a.c > 0.0) {
-            let (force, k) = a.damping_force_and_tangent(u_n, du, dt);
-            a.add_end_force(force, out, 1.0);
-            if let Some(m) = jac.as_deref_mut() {
-                self.graph()
-                    .add_axial_block(Self::graph_matrix(m), i, &k, 1.0);
-            }
-        }
-    }
-
-    pub(super) fn link_dissipation(&self, u: &[f64], du: &[f64], dt: f64) -> f64 {
-        (self.dashpots())
-            .map(|a| {
-                let (stretch, _) = a.stretch_increment(u, du, -0.5);
-                a.c * stretch * stretch / dt
-            })
-            .sum()
+        self.frame_dissipation_rate(v)
     }
 }

@@ -19,8 +19,10 @@
 //! coupled at the joints; their elimination follows the chains (see `crate::solver::sparse_blocks`).
 mod assembly;
 mod axial;
+mod frame_terms;
 mod graph;
 mod kinks;
+mod ledger;
 mod matrix;
 pub mod nonlinear;
 mod points;
