@@ -24,7 +24,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
     let raw: SceneFile = super::syntax::read(text, file)?;
     let name = c.identifier(raw.name.as_ref(), "name")?;
     let experiment = experiment(&c, &raw)?;
-    let mut frame = super::frame::frame(&c, &raw.joint, &raw.member)?;
+    let mut frame = super::frame_read::frame(&c, &raw.joint, &raw.member)?;
     let (geometry, span, rise) =
         match &frame {
             None => geometry(&c, &raw)?,
@@ -34,7 +34,7 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
             ),
             Some(f) => (Geometry::Frame, f.extent(), None),
         };
-    super::frame::links(&c, &raw.link, frame.as_mut())?;
+    super::frame_read::links(&c, &raw.link, frame.as_mut())?;
     let frame_ref = frame.as_ref();
 
     let harmonic = raw

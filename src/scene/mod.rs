@@ -15,6 +15,7 @@ pub mod frame;
 mod frame_check;
 mod frame_mesh;
 mod frame_outputs;
+mod frame_read;
 mod items;
 mod load_kinds;
 mod mechanics;
