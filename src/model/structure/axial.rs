@@ -207,29 +207,6 @@ impl Axial {
         let e = r / r.norm();
         (e.dot(&d), e)
     }
-
-    /// Its dashpot's force over a step from `u_n` by `du`, `(c / dt) (e . d) e` on its `to` end
-    /// (`d = du_b - du_a`, `e` the direction at the step's midpoint, [`Axial::stretch_increment`]),
-    /// and that force's derivative in `d`: `(c / dt) (e e^T + (e d^T P + (e . d) P) / (2 l))`, with
-    /// `P = I - e e^T` and `l` the midpoint length. The second part is the turn of the direction
-    /// with the step; without it Newton loses its quadratic rate when the link rotates.
-    pub fn damping_force_and_tangent(
-        &self,
-        u_n: &[f64],
-        du: &[f64],
-        dt: f64,
-    ) -> (Vector2<f64>, Matrix2<f64>) {
-        let [a, b] = self.nodes;
-        let d = Vector2::new(du[3 * b] - du[3 * a], du[3 * b + 1] - du[3 * a + 1]);
-        let r = self.chord(u_n) + 0.5 * d;
-        let l = r.norm();
-        let e = r / l;
-        let rate = e.dot(&d);
-        let p = Matrix2::identity() - e * e.transpose();
-        let turn = (e * (p * d).transpose() + rate * p) / (2.0 * l);
-        let scale = self.c / dt;
-        (scale * rate * e, scale * (e * e.transpose() + turn))
-    }
 }
 
 #[cfg(test)]
@@ -266,42 +243,6 @@ mod tests {
                 assert!(
                     (df[i] - k[(i, j)]).abs() <= 1e-7 * k.norm(),
                     "tangent {i} {j}"
-                );
-            }
-        }
-    }
-
-    /// The dashpot's tangent is the derivative of its force in the increment (central
-    /// differences of step 1e-6 of the length, errors ~1e-12 relative: checked at 1e-7), on a
-    /// step that turns the link by about 30 degrees; the force is `stretch_increment`'s.
-    #[test]
-    fn dashpot_tangent_is_the_derivative_of_its_force() {
-        let link = Axial::link(
-            [0, 1],
-            [Vector2::new(0.0, 0.0), Vector2::new(3.0, 0.4)],
-            1e3,
-            7.0,
-            2.5,
-        );
-        let (u_n, dt) = ([0.1, -0.2, 0.0, 0.35, 0.05, 0.0], 1e-2);
-        let du = [0.05, 0.1, 0.0, -0.6, 1.4, 0.0];
-        let (f, k) = link.damping_force_and_tangent(&u_n, &du, dt);
-        let (stretch, e) = link.stretch_increment(&u_n, &du, 0.5);
-        assert!((f - 7.0 / dt * stretch * e).norm() <= 1e-14 * f.norm());
-        let h = 1e-6 * link.rest;
-        for j in 0..2 {
-            let (mut plus, mut minus) = (du, du);
-            plus[3 + j] += h;
-            minus[3 + j] -= h;
-            let df = (link.damping_force_and_tangent(&u_n, &plus, dt).0
-                - link.damping_force_and_tangent(&u_n, &minus, dt).0)
-                / (2.0 * h);
-            for i in 0..2 {
-                assert!(
-                    (df[i] - k[(i, j)]).abs() <= 1e-7 * k.norm(),
-                    "tangent {i} {j}: {} vs {}",
-                    df[i],
-                    k[(i, j)]
                 );
             }
         }

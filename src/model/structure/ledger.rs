@@ -142,9 +142,12 @@ impl Structure {
         mut jac: Option<&mut StructureMatrix>,
     ) {
         for (i, a) in self.axial.iter().enumerate().filter(|(_, a)| a.c > 0.0) {
-            let (force, k) = a.damping_force_and_tangent(u_n, du, dt);
-            a.add_end_force(force, out, 1.0);
+            let (stretch, e) = a.stretch_increment(u_n, du, 0.5);
+            a.add_end_force(a.c * stretch / dt * e, out, 1.0);
             if let Some(m) = jac.as_deref_mut() {
+                // The change of `e` with the increment is left out: its term `e (P d)^T` is not
+                // symmetric, and every step factors a symmetric matrix.
+                let k = (a.c / dt) * (e * e.transpose());
                 self.graph()
                     .add_axial_block(Self::graph_matrix(m), i, &k, 1.0);
             }
