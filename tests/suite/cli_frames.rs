@@ -71,7 +71,7 @@ fn path_follows_lee_frame_through_both_limit_points() {
 
 #[test]
 fn modes_and_check_name_the_members() {
-    let dir = std::env::temp_dir().join(format!("georod_cli_modes_{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!("georod_cli_frames_modes_{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("portal.csv");
     let out = georod(&[
