@@ -35,7 +35,6 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
             Some(f) => (Geometry::Frame, f.extent(), None),
         };
     super::frame_read::links(&c, &raw.link, frame.as_mut())?;
-    let frame_ref = frame.as_ref();
 
     let harmonic = raw
         .load
@@ -84,6 +83,10 @@ pub fn check(text: &str, file: &str) -> Result<Scene, SceneError> {
         let param = scene_parameter(&c, i, p, &params)?;
         params.push(param);
     }
+    if let Some(f) = frame.as_mut() {
+        sections::member_parameters(&mut f.members, &mut params);
+    }
+    let frame_ref = frame.as_ref();
 
     let mut inputs = Vec::new();
     let supports = items::supports(&c, &raw.support, &params, frame_ref, &mut inputs)?;

@@ -14,6 +14,16 @@ pub(super) fn frame(
     joints: &[JointFile],
     members: &[MemberFile],
 ) -> Result<Option<Frame>, SceneError> {
+    if members.len() > sections::MAX_MEMBERS {
+        return c.err(
+            "[[member]]",
+            format!(
+                "{} members: a frame has at most {}",
+                members.len(),
+                sections::MAX_MEMBERS
+            ),
+        );
+    }
     if members.is_empty() {
         if !joints.is_empty() {
             return c.err(

@@ -389,6 +389,11 @@ impl Scene {
             }
         }
         self.section.check(values)?;
+        for m in self.frame.iter().flat_map(|f| &f.members) {
+            if let Some(own) = &m.section {
+                own.check(&m.name, values)?;
+            }
+        }
         for l in &self.loads {
             if let LoadKind::Moving {
                 speed: Slot::Param { index, sign },

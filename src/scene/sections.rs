@@ -70,23 +70,76 @@ impl CrossSection {
     }
 }
 
-/// A frame member's own section: its shape and dimensions as numbers (not FMU parameters), and
-/// its shear factor.
+/// A frame member's own section: its shape, its dimensions as fixed FMU parameters named
+/// `<member>_<dimension>` (`column_h`, `brace_D`, ...: a host or a sweep varies one member's
+/// section), and its shear factor.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MemberSection {
     pub shape: SectionShape,
-    pub dims: Vec<f64>,
+    /// The dimensions the file gives, in the order of the shape's dimensions (the parameters'
+    /// start values).
+    pub given: Vec<f64>,
+    /// Their indices in the scene's parameter table ([`member_parameters`]).
+    pub dims: Vec<usize>,
     /// `As = shear_factor A` (1 when not given; a general section gives `As`).
     pub shear_factor: f64,
 }
 
 impl MemberSection {
-    pub fn properties(&self) -> Properties {
-        shape_properties(self.shape, &|k| self.dims[k])
+    fn dim(&self, values: &ParamValues, k: usize) -> f64 {
+        values.get(self.dims[k])
     }
 
-    pub fn depth(&self) -> Option<f64> {
-        shape_depth(self.shape, self.dims.len(), &|k| self.dims[k])
+    pub fn properties(&self, values: &ParamValues) -> Properties {
+        shape_properties(self.shape, &|k| self.dim(values, k))
+    }
+
+    pub fn depth(&self, values: &ParamValues) -> Option<f64> {
+        shape_depth(self.shape, self.dims.len(), &|k| self.dim(values, k))
+    }
+
+    /// A tube's wall thinner than its radius, for member `member`.
+    pub fn check(&self, member: &str, values: &ParamValues) -> Result<(), ParamError> {
+        if self.shape == SectionShape::Tube {
+            let (outer, wall) = (self.dim(values, 0), self.dim(values, 1));
+            if wall >= 0.5 * outer {
+                return Err(params::refuse(
+                    &format!("{member}_t"),
+                    format!(
+                        "{wall} is out of range: a tube's wall must be thinner than its radius, \
+                         t in (0, D/2) = (0, {})",
+                        0.5 * outer
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Value references of the members' section dimensions: `MEMBER_SECTION_VR + 4 m + k` for
+/// dimension `k` of member `m`.
+pub const MEMBER_SECTION_VR: u32 = 1_600_000;
+/// The most members a frame may have (their section parameters' value references).
+pub const MAX_MEMBERS: usize = 25_000;
+
+/// Appends the dimensions of every member's own section to the parameter table as
+/// `<member>_<dimension>` and points each section at them.
+pub(super) fn member_parameters(members: &mut [super::frame::Member], params: &mut Vec<Param>) {
+    for (m, member) in members.iter_mut().enumerate() {
+        let Some(section) = &mut member.section else {
+            continue;
+        };
+        section.dims.clear();
+        let names = section.shape.dimensions();
+        for (k, (name, &start)) in names.iter().zip(&section.given).enumerate() {
+            let mut p = dimension_param(name, start);
+            p.name = format!("{}_{name}", member.name);
+            p.vr = MEMBER_SECTION_VR + 4 * m as u32 + k as u32;
+            p.description = format!("{} of member {}", p.description, member.name);
+            section.dims.push(params.len());
+            params.push(p);
+        }
     }
 }
 
@@ -225,7 +278,8 @@ pub(super) fn member_section(
     }
     Ok(MemberSection {
         shape: section.shape,
-        dims,
+        given: dims,
+        dims: Vec::new(),
         shear_factor: factor.unwrap_or(1.0),
     })
 }

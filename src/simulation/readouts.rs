@@ -39,11 +39,11 @@ impl Fibers {
             .map(|m| match &m.section {
                 None => Fibers::of(scene, values),
                 Some(own) => {
-                    let p = own.properties();
+                    let p = own.properties(values);
                     Fibers {
                         area: p.area,
                         inertia: p.inertia,
-                        depth: own.depth().unwrap_or(f64::NAN),
+                        depth: own.depth(values).unwrap_or(f64::NAN),
                     }
                 }
             })

@@ -26,7 +26,7 @@ fn member_section(scene: &Scene, values: &ParamValues, default: &Section, m: usi
         values.std(Std::Nu),
         values.std(Std::Rho),
     );
-    let p = own.properties();
+    let p = own.properties(values);
     let mut section = Section::from_properties(e, nu, rho, p.area, p.inertia, p.shear_area);
     section.ga *= own.shear_factor;
     section

@@ -122,6 +122,35 @@ fn portal_sway_follows_the_slope_deflection_stiffness() {
     }
 }
 
+/// A member's own section is a set of FMU parameters (`beam_A`, `beam_I`, `beam_As`): a file
+/// that writes the beam's `I` equal to the columns' and sets `beam_I` to another ratio gives the
+/// same sway, bit for bit, as the file that writes that ratio, and so follows the slope-deflection
+/// stiffness of the new ratio (within the tolerance of the test above).
+#[test]
+fn a_members_section_is_a_parameter() {
+    let (h, l, p) = (4.0, 6.0, 1.0);
+    for ratio in [0.5, 8.0] {
+        let set = [("beam_I", ratio * I_C)];
+        let sway = |n| output(&simulation_of(&portal(50.0, 50.0, 1.0, p, n), &set), "sway");
+        let written = |n| {
+            output(
+                &simulation_of(&portal(50.0, 50.0, ratio, p, n), &[]),
+                "sway",
+            )
+        };
+        let (coarse, fine) = (sway(40), sway(80));
+        assert_eq!((coarse, fine), (written(40), written(80)), "ratio {ratio}");
+        let r = (ratio * E * I_C / l) / (E * I_C / h);
+        let k = 24.0 * E * I_C / h.powi(3) * (1.0 + 6.0 * r) / (4.0 + 6.0 * r);
+        let error = (4.0 * fine - coarse) / 3.0 * k / p - 1.0;
+        println!(
+            "beam_I = {:.4e}: sway error against slope deflection {error:.2e}",
+            ratio * I_C
+        );
+        assert!(error.abs() < 2e-5, "r = {r}: {error:e}");
+    }
+}
+
 /// With the real section's axial and shear flexibility: the sway and the base moment against
 /// an independent linear Timoshenko frame (exact for end loads: one beam per member).
 #[test]
