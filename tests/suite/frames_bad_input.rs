@@ -134,3 +134,55 @@ fn bad_topology_is_refused_with_its_key() {
         assert_refused(what, &text, &parts);
     }
 }
+
+/// A member's own section dimensions are parameters `<member>_<dimension>`: a value out of
+/// range (a tube's wall not thinner than its radius, a negative height) is refused naming the
+/// parameter, and an accepted one changes nothing else.
+#[test]
+fn a_members_section_parameters_are_checked() {
+    let text = with(
+        "to = \"C\"\n",
+        "to = \"C\"\nsection = { shape = \"tube\", D = 0.2, t = 0.01 }\n",
+    );
+    let scene = georod::scene::Scene::parse(&text, "tube.toml").unwrap_or_else(|e| panic!("{e}"));
+    let refused = |name: &str, value: f64| {
+        scene
+            .values_with([(name, value)])
+            .err()
+            .unwrap_or_else(|| panic!("{name} = {value} accepted"))
+            .to_string()
+    };
+    let e = refused("beam_t", 0.1);
+    assert!(
+        e.contains("beam_t") && e.contains("thinner than its radius"),
+        "{e}"
+    );
+    let e = refused("beam_D", -1.0);
+    assert!(e.contains("beam_D"), "{e}");
+    scene
+        .values_with([("beam_t", 0.05)])
+        .expect("a thicker wall below D/2");
+}
+
+/// Every member's section parameters need value references of their own: a frame has at most
+/// 25000 members, and one more is refused with the count.
+#[test]
+fn too_many_members_are_refused() {
+    let n = 25_001;
+    let mut text = String::from("name = \"Long\"\n[defaults]\nE = 210e9\nrho = 7850.0\n");
+    for j in 0..=n {
+        text += &format!("[[joint]]\nname = \"J{j}\"\nx = {j}.0\ny = 0.0\n");
+    }
+    for m in 0..n {
+        text += &format!(
+            "[[member]]\nname = \"M{m}\"\nfrom = \"J{m}\"\nto = \"J{}\"\n",
+            m + 1
+        );
+    }
+    text += "[[support]]\nname = \"base\"\njoint = \"J0\"\nfix = [\"u1\", \"u2\", \"w\"]\n";
+    assert_refused(
+        "25001 members",
+        &text,
+        &["[[member]]", "25001 members", "at most 25000"],
+    );
+}
