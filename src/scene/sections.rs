@@ -136,7 +136,7 @@ pub(super) fn member_parameters(members: &mut [super::frame::Member], params: &m
             let mut p = dimension_param(name, start);
             p.name = format!("{}_{name}", member.name);
             p.vr = MEMBER_SECTION_VR + 4 * m as u32 + k as u32;
-            p.description = format!("{} of member {}", p.description, member.name);
+            p.description = format!("{} (member {})", p.description, member.name);
             section.dims.push(params.len());
             params.push(p);
         }
