@@ -126,7 +126,7 @@ def test_sweep_on_given_scheduler() -> None:
         fmu=str(BEAM_FMU), elements=4, substeps=16, transient_periods=5, sample_periods=15
     )
     with LocalCluster(
-        n_workers=1, threads_per_worker=1, dashboard_address=None, silence_logs=logging.WARNING
+        n_workers=1, threads_per_worker=1, dashboard_address=":0", silence_logs=logging.WARNING
     ) as cluster:
         got = run_sweep(
             base, "Omega", [3600.0, 3400.0], scheduler=cluster.scheduler_address, progress=False

@@ -37,7 +37,9 @@ def cluster(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[object, 
             n_workers=2,
             threads_per_worker=1,
             processes=True,
-            dashboard_address=None,
+            # A free port: the scheduler serves HTTP even without a dashboard, on 8787 unless
+            # told, and another test's cluster may hold that port at the same time.
+            dashboard_address=":0",
             silence_logs=logging.WARNING,
         )
     finally:
