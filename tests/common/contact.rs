@@ -93,3 +93,32 @@ pub fn twin_exponent(
     }
     growth / (periods - skip) as f64
 }
+
+/// A 1 m beam 1e5 times as stiff as steel (it heaves as a rigid body: tests/suite/contact_stops.rs),
+/// guided along e2 at its middle, steps of `dt`, scheme `integrator`: the start of the scenes
+/// that put springs and stops under it.
+pub fn guided_block(name: &str, dt: f64, integrator: f64) -> String {
+    format!(
+        r#"
+name = "{name}"
+[defaults]
+E = 2.1e16
+nu = 0.3
+rho = 7850.0
+d = 0.0
+elements = 10
+dt_max = {dt}
+integrator = {integrator}
+[section]
+b = 0.1
+h = 0.1
+[geometry]
+shape = "straight"
+L = 1.0
+[[support]]
+name = "guide"
+at = 0.5
+fix = ["u1"]
+"#
+    )
+}

@@ -21,28 +21,9 @@ const DT: f64 = 1e-5;
 /// A 1 m beam, 1e5 times as stiff as steel (it heaves as a rigid body: see
 /// tests/suite/contact_stops.rs), on two springs `k = K`, `k3` at its ends, guided along e2.
 fn duffing(k3: f64, integrator: f64, motion: &str) -> String {
+    let head = common::contact::guided_block("Duffing", DT, integrator);
     format!(
-        r#"
-name = "Duffing"
-[defaults]
-E = 2.1e16
-nu = 0.3
-rho = 7850.0
-d = 0.0
-elements = 10
-dt_max = {DT}
-integrator = {integrator}
-[section]
-b = 0.1
-h = 0.1
-[geometry]
-shape = "straight"
-L = 1.0
-[[support]]
-name = "guide"
-at = 0.5
-fix = ["u1"]
-[[spring]]
+        r#"{head}[[spring]]
 name = "left"
 at = 0.0
 dof = "u2"

@@ -42,28 +42,9 @@ k = {K_SPRING}
         // Free to rock: no static state to look for.
         "[initial]\nstate = \"reference\"\n".to_string()
     };
+    let head = common::contact::guided_block("Bilinear", DT, integrator);
     format!(
-        r#"
-name = "Bilinear"
-[defaults]
-E = 2.1e16
-nu = 0.3
-rho = 7850.0
-d = 0.0
-elements = 10
-dt_max = {DT}
-integrator = {integrator}
-[section]
-b = 0.1
-h = 0.1
-[geometry]
-shape = "straight"
-L = 1.0
-[[support]]
-name = "guide"
-at = 0.5
-fix = ["u1"]
-{springs}
+        r#"{head}{springs}
 [[stop]]
 name = "stop"
 at = 0.5
