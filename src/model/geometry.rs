@@ -1,5 +1,6 @@
 //! Reference curves `X(s)` parametrized by arc length, with the tangent angle `alpha(s)` measured
 //! from `e1` (model.md: `G = cos(alpha) e1 + sin(alpha) e2`).
+//! [`Placement`]: where a curve lies in the plane (a frame member's, from its `from` joint).
 use nalgebra::Vector2;
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,6 +89,52 @@ impl ReferenceCurve {
                     Vector2::new(x * s, y * (2.0 * bar - s))
                 }
             }
+        }
+    }
+}
+
+/// Where a rod's reference curve lies in the plane: its curve (which starts at the origin
+/// along `e1`), mirrored across `e1` if `mirrored`, turned by `angle` about the origin, then
+/// moved to `origin`. A member of a frame is placed so that its curve runs from its `from`
+/// joint to its `to` joint (an arc bulging to the right of that chord is mirrored).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Placement {
+    pub origin: Vector2<f64>,
+    pub angle: f64,
+    pub mirrored: bool,
+    /// `(cos angle, sin angle)`.
+    pub direction: Vector2<f64>,
+}
+
+impl Placement {
+    pub fn new(origin: Vector2<f64>, angle: f64) -> Placement {
+        Placement {
+            origin,
+            angle,
+            mirrored: false,
+            direction: Vector2::new(libm::cos(angle), libm::sin(angle)),
+        }
+    }
+
+    /// The same placement, mirrored.
+    pub fn mirrored(mut self) -> Placement {
+        self.mirrored = true;
+        self
+    }
+
+    /// `origin + R(angle) x` (with `x` mirrored first when the placement is).
+    pub fn place(&self, x: Vector2<f64>) -> Vector2<f64> {
+        let (c, s) = (self.direction[0], self.direction[1]);
+        let y = if self.mirrored { -x[1] } else { x[1] };
+        self.origin + Vector2::new(c * x[0] - s * y, s * x[0] + c * y)
+    }
+
+    /// A tangent angle of the curve, placed.
+    pub fn turn(&self, alpha: f64) -> f64 {
+        if self.mirrored {
+            self.angle - alpha
+        } else {
+            self.angle + alpha
         }
     }
 }

@@ -19,9 +19,9 @@ pub mod structure;
 
 pub use assembly::Assembly;
 pub use element::Element;
-pub use geometry::ReferenceCurve;
+pub use geometry::{Placement, ReferenceCurve};
 pub use loads::{LoadSet, LoadShape, LoadTime};
-pub use rod::{Placement, PointOnRod, Rod};
+pub use rod::{PointOnRod, Rod};
 pub use section::Section;
 pub use section_forces::SectionForces;
 pub use structure::{Place, Structure};

@@ -22,6 +22,7 @@ pub mod outputs;
 pub mod readouts;
 pub mod setup;
 mod setup_frame;
+mod setup_loads;
 pub mod snapshot;
 pub mod springs;
 mod stepping;
